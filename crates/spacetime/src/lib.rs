@@ -1,1 +1,21 @@
-pub fn placeholder() {}
+//! # nullpath-spacetime
+//!
+//! Null geodesics of curved spacetimes, as a library a physicist can use on its own: metrics in
+//! Hamiltonian form, local orthonormal frames of observers, integrators with error control, and the
+//! fate of every ray (escaped, captured, through a throat, or failed).
+//!
+//! Conventions: signature (−,+,+,+), G = c = 1, coordinates `x[0] = t`, `p` is the covariant momentum
+//! `p_μ`. Rays are traced *backwards* from the camera: the traced momentum is past-directed, and the
+//! photon it describes travels the other way. Nothing here knows about rendering.
+
+pub mod analytic;
+pub mod geodesic;
+pub mod metric;
+pub mod observer;
+pub mod tensor;
+
+pub use geodesic::{Fate, Integrator, State, Trace, TraceSettings, Visit};
+pub use metric::{
+    Ellis, Kerr, Metric, MetricFunction, Minkowski, Region, Schwarzschild, UserMetric,
+};
+pub use observer::Tetrad;

@@ -1,0 +1,257 @@
+//! The 4-D tracer: Hamilton's equations `dx^μ/dλ = ∂H/∂p_μ`, `dp_μ/dλ = −∂H/∂x^μ` for any metric,
+//! with RK4 or Dormand–Prince 5(4), a step cap proportional to the distance from the centre, and
+//! the ray's fate decided from the metric's horizon, regions and escape radius.
+
+use super::{dopri5, rk4, Failure, Fate, Integrator, State, Trace, TraceSettings, Visit};
+use crate::metric::{Metric, Region};
+use crate::tensor::{Covector4, Vector4};
+
+type Y = [f64; 8];
+
+#[inline]
+fn pack(s: &State) -> Y {
+    [
+        s.x[0], s.x[1], s.x[2], s.x[3], s.p[0], s.p[1], s.p[2], s.p[3],
+    ]
+}
+
+#[inline]
+fn unpack(y: &Y) -> State {
+    State {
+        x: [y[0], y[1], y[2], y[3]],
+        p: [y[4], y[5], y[6], y[7]],
+    }
+}
+
+/// One accepted step, with dense output for the state anywhere inside it.
+#[derive(Clone, Copy, Debug)]
+pub struct HamiltonianStep {
+    pub start: State,
+    pub end: State,
+    /// Affine parameter length of the step.
+    pub h: f64,
+    interpolant: Interpolant,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Interpolant {
+    Dopri(dopri5::Attempt<8>),
+    Hermite { d0: Y, d1: Y },
+}
+
+impl HamiltonianStep {
+    /// State at fraction `θ ∈ [0, 1]` of the step.
+    pub fn at(&self, theta: f64) -> State {
+        match &self.interpolant {
+            Interpolant::Dopri(a) => unpack(&a.dense(theta)),
+            Interpolant::Hermite { d0, d1 } => unpack(&rk4::hermite(
+                &pack(&self.start),
+                d0,
+                &pack(&self.end),
+                d1,
+                self.h,
+                theta,
+            )),
+        }
+    }
+}
+
+/// Integrates one ray step by step.
+pub struct HamiltonianTracer<'m, M: Metric + ?Sized> {
+    metric: &'m M,
+    settings: TraceSettings,
+    y: Y,
+    dy: Y,
+    h: f64,
+    lambda: f64,
+    steps: u32,
+}
+
+impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
+    pub fn new(metric: &'m M, start: State, settings: TraceSettings) -> Self {
+        let y = pack(&start);
+        let dy = Self::rhs(metric, &y);
+        let h0 = match settings.integrator {
+            Integrator::Rk4 { step } => step,
+            // A cautious first step; error control grows it within a few steps.
+            Integrator::Adaptive { .. } => f64::INFINITY,
+        };
+        let mut tracer = Self {
+            metric,
+            settings,
+            y,
+            dy,
+            h: h0,
+            lambda: 0.0,
+            steps: 0,
+        };
+        if matches!(settings.integrator, Integrator::Adaptive { .. }) {
+            tracer.h = 0.01 * tracer.step_cap();
+        }
+        tracer
+    }
+
+    #[inline]
+    fn rhs(metric: &M, y: &Y) -> Y {
+        let (dx, dp) = metric.geodesic_rhs(&[y[0], y[1], y[2], y[3]], &[y[4], y[5], y[6], y[7]]);
+        [dx[0], dx[1], dx[2], dx[3], dp[0], dp[1], dp[2], dp[3]]
+    }
+
+    pub fn state(&self) -> State {
+        unpack(&self.y)
+    }
+
+    /// Affine parameter travelled so far.
+    pub fn lambda(&self) -> f64 {
+        self.lambda
+    }
+
+    pub fn steps(&self) -> u32 {
+        self.steps
+    }
+
+    /// Coordinate velocity `dx^μ/dλ` at the current point.
+    pub fn velocity(&self) -> Vector4 {
+        [self.dy[0], self.dy[1], self.dy[2], self.dy[3]]
+    }
+
+    /// Largest affine step: the coordinate displacement stays below `max_step_fraction` of the
+    /// distance from the centre, so rays stride far from masses and creep near them.
+    fn step_cap(&self) -> f64 {
+        let r = (self.y[1] * self.y[1] + self.y[2] * self.y[2] + self.y[3] * self.y[3]).sqrt();
+        let v =
+            (self.dy[1] * self.dy[1] + self.dy[2] * self.dy[2] + self.dy[3] * self.dy[3]).sqrt();
+        self.settings.max_step_fraction * r.max(self.metric.length_scale()) / v
+    }
+
+    /// Scaled error norm of an attempt: rotation-invariant blocks for position, time and
+    /// momentum, each relative to its own size.
+    fn error_norm(&self, a: &dopri5::Attempt<8>, rtol: f64) -> f64 {
+        let scale = self.metric.length_scale();
+        let n3 = |v: &Y, i: usize| (v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]).sqrt();
+        let n4 = |v: &Y| (v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]).sqrt();
+        let pos = n3(&a.error, 1) / (rtol * (scale + n3(&a.y0, 1).max(n3(&a.y1, 1))));
+        let time = a.error[0].abs() / (rtol * (scale + a.y0[0].abs().max(a.y1[0].abs())));
+        let mom = n4(&a.error) / (rtol * n4(&a.y0).max(n4(&a.y1)));
+        pos.max(time).max(mom)
+    }
+
+    /// Advances by one accepted step, no longer than `h_limit`.
+    pub fn step(&mut self, h_limit: f64) -> Result<HamiltonianStep, Failure> {
+        if self.steps >= self.settings.max_steps {
+            return Err(Failure::OutOfSteps);
+        }
+        let f = |_t: f64, y: &Y| Self::rhs(self.metric, y);
+        let cap = self.step_cap().min(h_limit);
+        let (y1, d1, h, interpolant) = match self.settings.integrator {
+            Integrator::Rk4 { step } => {
+                let h = step.min(cap);
+                let y1 = rk4::step(&f, self.lambda, &self.y, &self.dy, h);
+                let d1 = Self::rhs(self.metric, &y1);
+                (y1, d1, h, Interpolant::Hermite { d0: self.dy, d1 })
+            }
+            Integrator::Adaptive { rtol } => {
+                let mut h = self.h.min(cap);
+                loop {
+                    let a = dopri5::attempt(&f, self.lambda, &self.y, &self.dy, h);
+                    let err = self.error_norm(&a, rtol);
+                    if err <= 1.0 {
+                        self.h = h * dopri5::step_factor(err);
+                        break (a.y1, a.end_derivative(), h, Interpolant::Dopri(a));
+                    }
+                    if !err.is_finite() {
+                        h *= 0.2;
+                    } else {
+                        h *= dopri5::step_factor(err).min(1.0);
+                    }
+                    if h <= 1e-14 * cap || !h.is_finite() {
+                        return Err(Failure::StepUnderflow);
+                    }
+                }
+            }
+        };
+        if !y1.iter().chain(d1.iter()).all(|v| v.is_finite()) {
+            return Err(Failure::NonFinite);
+        }
+        let step = HamiltonianStep {
+            start: unpack(&self.y),
+            end: unpack(&y1),
+            h,
+            interpolant,
+        };
+        self.y = y1;
+        self.dy = d1;
+        self.lambda += h;
+        self.steps += 1;
+        Ok(step)
+    }
+
+    /// The fate of the ray at its current point, if it has ended.
+    fn ended(&self, start_region: Region) -> Option<Fate> {
+        let x: Vector4 = [self.y[0], self.y[1], self.y[2], self.y[3]];
+        if self.metric.inside_horizon(&x) {
+            return Some(Fate::Captured);
+        }
+        let v = self.velocity();
+        if self.metric.radius(&x) > self.settings.escape_radius && self.metric.is_outgoing(&x, &v) {
+            let w = self.metric.to_world(&x, &v);
+            return Some(if w.region == start_region {
+                Fate::Escaped {
+                    direction: w.direction,
+                }
+            } else {
+                Fate::Traversed {
+                    direction: w.direction,
+                }
+            });
+        }
+        None
+    }
+
+    /// Traces the ray to its end, showing every accepted step to `visit`.
+    pub fn run(mut self, mut visit: impl FnMut(&HamiltonianStep) -> Visit) -> Trace {
+        let start = unpack(&self.y);
+        let start_region = self.metric.region(&start.x);
+        let mut max_h: f64 = self.metric.hamiltonian(&start.x, &start.p).abs();
+        let fate = loop {
+            if let Some(fate) = self.ended(start_region) {
+                break fate;
+            }
+            match self.step(f64::INFINITY) {
+                Ok(step) => {
+                    max_h = max_h.max(self.metric.hamiltonian(&step.end.x, &step.end.p).abs());
+                    if visit(&step) == Visit::Stop {
+                        break Fate::Stopped;
+                    }
+                }
+                Err(failure) => break Fate::Failed(failure),
+            }
+        };
+        Trace {
+            fate,
+            steps: self.steps,
+            max_abs_hamiltonian: max_h,
+            end: self.state(),
+        }
+    }
+}
+
+/// Traces a ray from `start` to its end (see [`HamiltonianTracer::run`]).
+pub fn trace<M: Metric + ?Sized>(
+    metric: &M,
+    start: State,
+    settings: &TraceSettings,
+    visit: impl FnMut(&HamiltonianStep) -> Visit,
+) -> Trace {
+    HamiltonianTracer::new(metric, start, *settings).run(visit)
+}
+
+/// `p_φ = x p_y − y p_x`, conserved in axisymmetric spacetimes.
+pub fn angular_momentum_z(s: &State) -> f64 {
+    s.x[1] * s.p[2] - s.x[2] * s.p[1]
+}
+
+/// Convenience: `−p_t`, the conserved energy of a stationary spacetime.
+pub fn energy(p: &Covector4) -> f64 {
+    -p[0]
+}

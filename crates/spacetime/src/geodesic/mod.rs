@@ -1,0 +1,114 @@
+//! Null geodesics: integrators, the step-by-step tracer and the fate of a ray.
+//!
+//! [`HamiltonianTracer`] integrates Hamilton's equations in 4-D for any [`Metric`];
+//! [`plane`] integrates spherically symmetric spacetimes in the ray's own plane (exactly,
+//! cheaper, with no poles). Both hand every accepted step to the caller, who tests its chord
+//! against a scene and may stop the ray.
+//!
+//! [`Metric`]: crate::metric::Metric
+
+pub mod dopri5;
+mod hamiltonian;
+pub mod plane;
+pub mod rk4;
+
+pub use hamiltonian::{angular_momentum_z, energy, trace, HamiltonianStep, HamiltonianTracer};
+
+use crate::tensor::{Covector4, Vector4};
+
+/// A point on a ray: position `x^μ` and covariant momentum `p_μ`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct State {
+    pub x: Vector4,
+    pub p: Covector4,
+}
+
+/// How rays are integrated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Integrator {
+    /// Classical RK4 with a fixed affine step `step` (further limited by the step cap).
+    Rk4 { step: f64 },
+    /// Dormand–Prince 5(4) with error control at relative tolerance `rtol`.
+    Adaptive { rtol: f64 },
+}
+
+/// Settings shared by every tracer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TraceSettings {
+    pub integrator: Integrator,
+    /// A ray further than this from the centre (areal radius) and moving away has escaped.
+    pub escape_radius: f64,
+    /// Largest coordinate displacement of one step as a fraction of the distance to the centre.
+    pub max_step_fraction: f64,
+    /// A ray that has not ended after this many accepted steps has failed.
+    pub max_steps: u32,
+}
+
+impl Default for TraceSettings {
+    fn default() -> Self {
+        Self {
+            integrator: Integrator::Adaptive { rtol: 1e-8 },
+            escape_radius: 1e3,
+            max_step_fraction: 0.5,
+            max_steps: 100_000,
+        }
+    }
+}
+
+/// Why a ray failed numerically.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Failure {
+    /// It used up `max_steps`.
+    OutOfSteps,
+    /// Error control asked for a step too small to make progress.
+    StepUnderflow,
+    /// The state stopped being finite.
+    NonFinite,
+}
+
+/// How a ray ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Fate {
+    /// Reached the escape radius moving outward, in the region it started in; `direction` is its
+    /// world direction there (the sky direction).
+    Escaped { direction: [f64; 3] },
+    /// Escaped into the other region of a wormhole.
+    Traversed { direction: [f64; 3] },
+    /// Crossed an event horizon.
+    Captured,
+    /// The caller stopped it (it hit something).
+    Stopped,
+    /// A numerical failure, counted and reported, never turned into a pixel value.
+    Failed(Failure),
+}
+
+impl Fate {
+    /// Stable lower-case name, as used in statistics and JSON.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Fate::Escaped { .. } => "escaped",
+            Fate::Traversed { .. } => "traversed",
+            Fate::Captured => "captured",
+            Fate::Stopped => "stopped",
+            Fate::Failed(_) => "failed",
+        }
+    }
+}
+
+/// What the caller wants after seeing a step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Visit {
+    Continue,
+    Stop,
+}
+
+/// The outcome of tracing one ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trace {
+    pub fate: Fate,
+    /// Accepted steps.
+    pub steps: u32,
+    /// Largest `|H|` at the accepted step ends.
+    pub max_abs_hamiltonian: f64,
+    pub end: State,
+}

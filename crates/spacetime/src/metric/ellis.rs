@@ -1,0 +1,214 @@
+//! Ellis (Ellis–Bronnikov) wormhole with throat radius `b₀`:
+//! `ds² = −dt² + dl² + (l² + b₀²) dΩ²`, `l ∈ (−∞, ∞)` (Ellis 1973; Morris & Thorne 1988).
+//!
+//! Chart: isotropic Cartesian coordinates `X = s n̂` with `s = l + √(l² + b₀²) ∈ (0, ∞)`. Then
+//! `l² + b₀² = (s Ω)²` and `dl = Ω ds` with `Ω(s) = ½ (1 + b₀²/s²)`, so the spatial metric is
+//! conformally flat, `Ω² δ_ij`: no poles anywhere, the throat is the sphere `s = b₀`, the upper
+//! region (l > 0) is `s > b₀` and the lower region (l < 0) is the ball `s < b₀`, whose centre is
+//! the lower region's infinity. `s ↦ b₀²/s` is an isometry exchanging the two regions.
+//!
+//! World coordinates of each region: `Y = ±ρ n̂` with `ρ = √(l² + b₀²)` the areal radius, `+` in the
+//! upper region and `−` (antipodal) in the lower one, so a ray straight through the throat keeps
+//! its direction and neither region is mirrored. The throat is the sphere `|Y| = b₀` of both.
+
+use super::{Metric, Region, WorldPoint};
+use crate::tensor::{normalize3, Covector4, Matrix4, Vector4};
+
+/// Ellis wormhole.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ellis {
+    pub throat: f64,
+}
+
+impl Ellis {
+    pub fn new(throat: f64) -> Self {
+        Self { throat }
+    }
+
+    /// Proper radial coordinate `l` of an isotropic radius `s`.
+    pub fn proper_radial(&self, s: f64) -> f64 {
+        0.5 * (s - self.throat * self.throat / s)
+    }
+
+    /// Isotropic radius `s` of a proper radial coordinate `l` (stable on both sides).
+    pub fn isotropic_radius(&self, l: f64) -> f64 {
+        let rho = l.hypot(self.throat);
+        if l >= 0.0 {
+            l + rho
+        } else {
+            self.throat * self.throat / (rho - l)
+        }
+    }
+
+    /// Conformal factor `Ω = ½ (1 + b₀²/s²)`.
+    #[inline]
+    fn conformal(&self, s2: f64) -> f64 {
+        0.5 * (1.0 + self.throat * self.throat / s2)
+    }
+}
+
+#[inline]
+fn s2_of(x: &Vector4) -> f64 {
+    x[1] * x[1] + x[2] * x[2] + x[3] * x[3]
+}
+
+impl Metric for Ellis {
+    fn metric(&self, x: &Vector4) -> Matrix4 {
+        let w = self.conformal(s2_of(x)).powi(2);
+        [
+            [-1.0, 0.0, 0.0, 0.0],
+            [0.0, w, 0.0, 0.0],
+            [0.0, 0.0, w, 0.0],
+            [0.0, 0.0, 0.0, w],
+        ]
+    }
+
+    fn inverse_metric(&self, x: &Vector4) -> Matrix4 {
+        let w = self.conformal(s2_of(x)).powi(-2);
+        [
+            [-1.0, 0.0, 0.0, 0.0],
+            [0.0, w, 0.0, 0.0],
+            [0.0, 0.0, w, 0.0],
+            [0.0, 0.0, 0.0, w],
+        ]
+    }
+
+    /// `∂_a Ω⁻² = 2 b₀² x_a / (s⁴ Ω³)`.
+    fn inverse_metric_derivatives(&self, x: &Vector4) -> (Matrix4, [Matrix4; 4]) {
+        let s2 = s2_of(x);
+        let omega = self.conformal(s2);
+        let c = 2.0 * self.throat * self.throat / (s2 * s2 * omega.powi(3));
+        let mut d = [[[0.0; 4]; 4]; 4];
+        for a in 1..4 {
+            for i in 1..4 {
+                d[a][i][i] = c * x[a];
+            }
+        }
+        (self.inverse_metric(x), d)
+    }
+
+    #[inline]
+    fn geodesic_rhs(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
+        let s2 = s2_of(x);
+        let omega = self.conformal(s2);
+        let w = 1.0 / (omega * omega);
+        let p2 = p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
+        let c = -self.throat * self.throat * p2 / (s2 * s2 * omega * omega * omega);
+        (
+            [-p[0], w * p[1], w * p[2], w * p[3]],
+            [0.0, c * x[1], c * x[2], c * x[3]],
+        )
+    }
+
+    fn length_scale(&self) -> f64 {
+        self.throat
+    }
+
+    /// Areal radius `ρ = s Ω`.
+    fn radius(&self, x: &Vector4) -> f64 {
+        let s2 = s2_of(x);
+        s2.sqrt() * self.conformal(s2)
+    }
+
+    /// Away from the throat means `|l|` growing: `s` grows above the throat, shrinks below it.
+    fn is_outgoing(&self, x: &Vector4, dx: &Vector4) -> bool {
+        let radial = x[1] * dx[1] + x[2] * dx[2] + x[3] * dx[3];
+        match self.region(x) {
+            Region::Upper => radial > 0.0,
+            Region::Lower => radial < 0.0,
+        }
+    }
+
+    fn region(&self, x: &Vector4) -> Region {
+        if s2_of(x) >= self.throat * self.throat {
+            Region::Upper
+        } else {
+            Region::Lower
+        }
+    }
+
+    /// `Y = ±ρ n̂`; `dY = ±[(l/s)(n̂·dX) n̂ + Ω (dX − n̂ (n̂·dX))]` since `dρ/ds = l/s`.
+    fn to_world(&self, x: &Vector4, dx: &Vector4) -> WorldPoint {
+        let s2 = s2_of(x);
+        let s = s2.sqrt();
+        let omega = self.conformal(s2);
+        let n = [x[1] / s, x[2] / s, x[3] / s];
+        let region = self.region(x);
+        let sign = if region == Region::Upper { 1.0 } else { -1.0 };
+        let rho = s * omega;
+        let radial = n[0] * dx[1] + n[1] * dx[2] + n[2] * dx[3];
+        let l_over_s = self.proper_radial(s) / s;
+        let dy: [f64; 3] = std::array::from_fn(|i| {
+            sign * (l_over_s * radial * n[i] + omega * (dx[i + 1] - n[i] * radial))
+        });
+        WorldPoint {
+            region,
+            position: [sign * rho * n[0], sign * rho * n[1], sign * rho * n[2]],
+            direction: normalize3(&dy),
+        }
+    }
+
+    fn from_world(&self, region: Region, p: [f64; 3], t: f64) -> Option<Vector4> {
+        let rho = crate::tensor::norm3(&p);
+        if !(rho >= self.throat) || !rho.is_finite() {
+            return None;
+        }
+        let l_abs = ((rho - self.throat) * (rho + self.throat)).sqrt();
+        let (l, sign) = match region {
+            Region::Upper => (l_abs, 1.0),
+            Region::Lower => (-l_abs, -1.0),
+        };
+        let scale = sign * self.isotropic_radius(l) / rho;
+        Some([t, p[0] * scale, p[1] * scale, p[2] * scale])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn conformance() {
+        let m = Ellis::new(1.0);
+        for x in [
+            [0.0, 10.0, 0.0, 0.0],
+            [3.0, 1.0, -0.5, 0.7],
+            [0.0, 0.1, 0.2, 0.3],
+            [0.0, 0.6, 0.5, 0.2],
+        ] {
+            super::super::conformance::check_metric(&m, &x);
+        }
+    }
+
+    #[test]
+    fn chart_radius_round_trips_and_areal_radius_matches() {
+        let m = Ellis::new(2.0);
+        for l in [-50.0, -2.0, -1e-3, 0.0, 0.5, 7.0, 1e4] {
+            let s = m.isotropic_radius(l);
+            assert!(
+                (m.proper_radial(s) - l).abs() < 1e-12 * (1.0 + l.abs()),
+                "l = {l}"
+            );
+            let x = [0.0, s, 0.0, 0.0];
+            assert!((m.radius(&x) - l.hypot(2.0)).abs() < 1e-12 * (1.0 + l.abs()));
+        }
+    }
+
+    #[test]
+    fn world_coordinates_round_trip_on_both_sides() {
+        let m = Ellis::new(1.5);
+        for region in [Region::Upper, Region::Lower] {
+            let p = [3.0, -1.0, 2.0];
+            let x = m.from_world(region, p, 0.0).unwrap();
+            let w = m.to_world(&x, &[0.0, 1.0, 0.0, 0.0]);
+            assert_eq!(w.region, region);
+            for i in 0..3 {
+                assert!((w.position[i] - p[i]).abs() < 1e-12);
+            }
+        }
+        assert!(
+            m.from_world(Region::Upper, [0.5, 0.0, 0.0], 0.0).is_none(),
+            "inside the throat"
+        );
+    }
+}

@@ -1,0 +1,155 @@
+//! Kerr black hole (mass `M`, spin `a` about +z, `|a| ≤ M`) in outgoing Cartesian Kerr–Schild
+//! coordinates (Kerr & Schild 1965; Visser 2007, "The Kerr spacetime: a brief introduction", §3):
+//!
+//! `g = η + f l ⊗ l`, `f = 2 M r³ / (r⁴ + a² z²)`,
+//! `l_μ = (1, −(r x − a y)/(r² + a²), −(r y + a x)/(r² + a²), −z/r)`,
+//! with `r` the spheroidal radius: `x² + y²)/(r² + a²) + z²/r² = 1`.
+//!
+//! The outgoing form is the time reverse of the usual ingoing one with `a → −a`; it is regular on
+//! the past horizon, which backward-traced rays cross. The ring singularity (r = 0, z = 0) lies
+//! inside the horizon, where rays are stopped.
+
+use super::kerr_schild::KerrSchildPoint;
+use super::user::Scalar;
+use super::Metric;
+use crate::tensor::{Covector4, Matrix4, Vector4};
+use num_dual::DualSVec64;
+
+/// Kerr spacetime.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Kerr {
+    pub mass: f64,
+    pub spin: f64,
+}
+
+/// Spheroidal radius, `f` and `k` (with `l_μ = (1, −k)`), generic so that dual numbers give their
+/// exact derivatives.
+fn kerr_schild_fields<D: Scalar>(m: f64, a: f64, x: D, y: D, z: D) -> (D, D, [D; 3]) {
+    let a2 = a * a;
+    let rho2 = x * x + y * y + z * z;
+    let half = (rho2 - a2) * 0.5;
+    let r2 = half + (half * half + z * z * a2).sqrt();
+    let r = r2.sqrt();
+    let f = r * r2 * (2.0 * m) / (r2 * r2 + z * z * a2);
+    let inv = (r2 + a2).recip();
+    let k = [(r * x - y * a) * inv, (r * y + x * a) * inv, z / r];
+    (r, f, k)
+}
+
+impl Kerr {
+    pub fn new(mass: f64, spin: f64) -> Self {
+        Self { mass, spin }
+    }
+
+    /// Outer horizon `r₊ = M + √(M² − a²)`.
+    pub fn horizon_radius(&self) -> f64 {
+        self.mass
+            + (self.mass * self.mass - self.spin * self.spin)
+                .max(0.0)
+                .sqrt()
+    }
+
+    /// Spheroidal radius `r` of a spatial point.
+    pub fn spheroidal_radius(&self, x: &Vector4) -> f64 {
+        kerr_schild_fields::<f64>(self.mass, self.spin, x[1], x[2], x[3]).0
+    }
+
+    fn point(&self, x: &Vector4) -> KerrSchildPoint {
+        let var = |i: usize, v: f64| DualSVec64::<3>::from_re(v).derivative(i);
+        let (_, f, k) = kerr_schild_fields(
+            self.mass,
+            self.spin,
+            var(0, x[1]),
+            var(1, x[2]),
+            var(2, x[3]),
+        );
+        let grad = |d: &DualSVec64<3>| {
+            let g = d.eps.unwrap_generic(nalgebra::Const::<3>, nalgebra::U1);
+            [g[0], g[1], g[2]]
+        };
+        let dk_by_component = [grad(&k[0]), grad(&k[1]), grad(&k[2])];
+        KerrSchildPoint {
+            f: f.re,
+            k: [k[0].re, k[1].re, k[2].re],
+            df: grad(&f),
+            dk: std::array::from_fn(|i| std::array::from_fn(|j| dk_by_component[j][i])),
+        }
+    }
+}
+
+impl Metric for Kerr {
+    fn metric(&self, x: &Vector4) -> Matrix4 {
+        self.point(x).metric()
+    }
+
+    fn inverse_metric(&self, x: &Vector4) -> Matrix4 {
+        self.point(x).inverse_metric()
+    }
+
+    fn inverse_metric_derivatives(&self, x: &Vector4) -> (Matrix4, [Matrix4; 4]) {
+        let pt = self.point(x);
+        (pt.inverse_metric(), pt.inverse_metric_derivatives())
+    }
+
+    fn geodesic_rhs(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
+        self.point(x).geodesic_rhs(p)
+    }
+
+    fn hamiltonian(&self, x: &Vector4, p: &Covector4) -> f64 {
+        self.point(x).hamiltonian(p)
+    }
+
+    fn length_scale(&self) -> f64 {
+        self.mass.max(f64::MIN_POSITIVE)
+    }
+
+    fn radius(&self, x: &Vector4) -> f64 {
+        self.spheroidal_radius(x)
+    }
+
+    fn inside_horizon(&self, x: &Vector4) -> bool {
+        self.spheroidal_radius(x) <= self.horizon_radius()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metric::Schwarzschild;
+
+    #[test]
+    fn conformance() {
+        let m = Kerr::new(1.0, 0.9);
+        for x in [
+            [0.0, 10.0, 0.0, 0.0],
+            [3.0, 1.0, -2.5, 0.7],
+            [0.0, 0.1, 0.2, 2.1],
+            [0.0, 1.5, 0.5, 0.2],
+        ] {
+            super::super::conformance::check_metric(&m, &x);
+        }
+    }
+
+    #[test]
+    fn zero_spin_is_schwarzschild() {
+        let k = Kerr::new(1.3, 0.0);
+        let s = Schwarzschild::new(1.3);
+        let x = [0.0, 2.0, -3.0, 1.0];
+        let (a, da) = k.inverse_metric_derivatives(&x);
+        let (b, db) = s.inverse_metric_derivatives(&x);
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!((a[i][j] - b[i][j]).abs() < 1e-14);
+                for d in 0..4 {
+                    assert!((da[d][i][j] - db[d][i][j]).abs() < 1e-14);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn horizon_radius_of_extremal_and_slow_holes() {
+        assert!((Kerr::new(1.0, 1.0).horizon_radius() - 1.0).abs() < 1e-15);
+        assert!((Kerr::new(1.0, 0.6).horizon_radius() - 1.8).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,86 @@
+//! Shared algebra of metrics in Kerr–Schild form, `g_{μν} = η_{μν} + f l_μ l_ν` with `l` null for
+//! both η and g, whose inverse is exactly `g^{μν} = η^{μν} − f l^μ l^ν` (Kerr & Schild 1965).
+//!
+//! The metrics here are stationary, so only spatial derivatives appear. `l_μ = (1, −k_i)` in
+//! outgoing form: past-directed rays cross the (past) horizon smoothly, which is what backward
+//! tracing needs.
+
+use crate::tensor::{Covector4, Matrix4, Vector4, ETA};
+
+/// The data of one Kerr–Schild metric at one point: `f`, the spatial unit vector `k` with
+/// `l_μ = (1, −k)`, and their spatial derivatives `df[i] = ∂_i f`, `dk[i][j] = ∂_i k_j`.
+pub struct KerrSchildPoint {
+    pub f: f64,
+    pub k: [f64; 3],
+    pub df: [f64; 3],
+    pub dk: [[f64; 3]; 3],
+}
+
+impl KerrSchildPoint {
+    /// Covariant null vector `l_μ`.
+    fn l_lower(&self) -> Covector4 {
+        [1.0, -self.k[0], -self.k[1], -self.k[2]]
+    }
+
+    /// Contravariant `l^μ = η^{μν} l_ν`.
+    fn l_upper(&self) -> Vector4 {
+        [-1.0, -self.k[0], -self.k[1], -self.k[2]]
+    }
+
+    pub fn metric(&self) -> Matrix4 {
+        let l = self.l_lower();
+        std::array::from_fn(|i| std::array::from_fn(|j| ETA[i][j] + self.f * l[i] * l[j]))
+    }
+
+    pub fn inverse_metric(&self) -> Matrix4 {
+        let l = self.l_upper();
+        std::array::from_fn(|i| std::array::from_fn(|j| ETA[i][j] - self.f * l[i] * l[j]))
+    }
+
+    /// `∂_α g^{μν} = −∂_α f l^μ l^ν − f (∂_α l^μ l^ν + l^μ ∂_α l^ν)`.
+    pub fn inverse_metric_derivatives(&self) -> [Matrix4; 4] {
+        let l = self.l_upper();
+        let mut d = [[[0.0; 4]; 4]; 4];
+        for a in 1..4 {
+            let dl: Vector4 = [
+                0.0,
+                -self.dk[a - 1][0],
+                -self.dk[a - 1][1],
+                -self.dk[a - 1][2],
+            ];
+            for i in 0..4 {
+                for j in 0..4 {
+                    d[a][i][j] =
+                        -self.df[a - 1] * l[i] * l[j] - self.f * (dl[i] * l[j] + l[i] * dl[j]);
+                }
+            }
+        }
+        d
+    }
+
+    /// Hamilton's equations in closed form: with `q = l^μ p_μ`,
+    /// `H = ½ η^{μν} p_μ p_ν − ½ f q²`, so `dx^μ = η^{μν} p_ν − f q l^μ` (`l^μ = (−1, −k)`) and
+    /// `dp_i = ½ ∂_i f q² + f q ∂_i q`, `∂_i q = −∂_i k_j p_j`; `dp_t = 0`.
+    #[inline]
+    pub fn geodesic_rhs(&self, p: &Covector4) -> (Vector4, Covector4) {
+        let q = -p[0] - (self.k[0] * p[1] + self.k[1] * p[2] + self.k[2] * p[3]);
+        let fq = self.f * q;
+        let dx = [
+            -p[0] + fq,
+            p[1] + fq * self.k[0],
+            p[2] + fq * self.k[1],
+            p[3] + fq * self.k[2],
+        ];
+        let mut dp = [0.0; 4];
+        for i in 0..3 {
+            let dq = -(self.dk[i][0] * p[1] + self.dk[i][1] * p[2] + self.dk[i][2] * p[3]);
+            dp[i + 1] = 0.5 * self.df[i] * q * q + fq * dq;
+        }
+        (dx, dp)
+    }
+
+    pub fn hamiltonian(&self, p: &Covector4) -> f64 {
+        let q = -p[0] - (self.k[0] * p[1] + self.k[1] * p[2] + self.k[2] * p[3]);
+        0.5 * (-p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]) - 0.5 * self.f * q * q
+    }
+}

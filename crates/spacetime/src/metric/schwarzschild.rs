@@ -1,0 +1,97 @@
+//! Schwarzschild black hole of mass `M` in outgoing Cartesian Kerr–Schild coordinates:
+//! `g = η + (2M/r) l ⊗ l`, `l_μ = (1, −x/r, −y/r, −z/r)`, `r = |x|` (the areal radius).
+//!
+//! No poles, and the horizon `r = 2M` is an ordinary place in this chart, so a backward-traced
+//! ray that falls in crosses it and is stopped there.
+
+use super::kerr_schild::KerrSchildPoint;
+use super::Metric;
+use crate::tensor::{norm3, spatial, Covector4, Matrix4, Vector4};
+
+/// Schwarzschild spacetime.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Schwarzschild {
+    pub mass: f64,
+}
+
+impl Schwarzschild {
+    pub fn new(mass: f64) -> Self {
+        Self { mass }
+    }
+
+    pub fn horizon_radius(&self) -> f64 {
+        2.0 * self.mass
+    }
+
+    /// `f = 2M/r`, `k = x/r`, `∂_i f = −2M x_i/r³`, `∂_i k_j = (δ_ij − k_i k_j)/r`.
+    #[inline]
+    fn point(&self, x: &Vector4) -> KerrSchildPoint {
+        let r = norm3(&spatial(x));
+        let inv_r = 1.0 / r;
+        let k = [x[1] * inv_r, x[2] * inv_r, x[3] * inv_r];
+        let f = 2.0 * self.mass * inv_r;
+        let df = [-f * k[0] * inv_r, -f * k[1] * inv_r, -f * k[2] * inv_r];
+        let dk = std::array::from_fn(|i| {
+            std::array::from_fn(|j| (if i == j { 1.0 } else { 0.0 } - k[i] * k[j]) * inv_r)
+        });
+        KerrSchildPoint { f, k, df, dk }
+    }
+}
+
+impl Metric for Schwarzschild {
+    fn metric(&self, x: &Vector4) -> Matrix4 {
+        self.point(x).metric()
+    }
+
+    fn inverse_metric(&self, x: &Vector4) -> Matrix4 {
+        self.point(x).inverse_metric()
+    }
+
+    fn inverse_metric_derivatives(&self, x: &Vector4) -> (Matrix4, [Matrix4; 4]) {
+        let pt = self.point(x);
+        (pt.inverse_metric(), pt.inverse_metric_derivatives())
+    }
+
+    #[inline]
+    fn geodesic_rhs(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
+        self.point(x).geodesic_rhs(p)
+    }
+
+    fn hamiltonian(&self, x: &Vector4, p: &Covector4) -> f64 {
+        self.point(x).hamiltonian(p)
+    }
+
+    fn length_scale(&self) -> f64 {
+        self.mass.max(f64::MIN_POSITIVE)
+    }
+
+    fn inside_horizon(&self, x: &Vector4) -> bool {
+        norm3(&spatial(x)) <= self.horizon_radius()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn conformance() {
+        let m = Schwarzschild::new(1.0);
+        for x in [
+            [0.0, 10.0, 0.0, 0.0],
+            [3.0, 1.0, -2.5, 0.7],
+            [0.0, 0.0, 0.0, 2.1],
+            [0.0, 1.5, 0.5, 0.2],
+        ] {
+            super::super::conformance::check_metric(&m, &x);
+        }
+    }
+
+    #[test]
+    fn static_observer_norm_matches_schwarzschild_lapse() {
+        // g_tt = −(1 − 2M/r) in Kerr–Schild as in Schwarzschild coordinates.
+        let m = Schwarzschild::new(1.5);
+        let g = m.metric(&[0.0, 3.0, 4.0, 0.0]);
+        assert!((g[0][0] + (1.0 - 3.0 / 5.0)).abs() < 1e-15);
+    }
+}

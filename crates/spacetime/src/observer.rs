@@ -1,0 +1,284 @@
+//! Observers and their local orthonormal frames (tetrads), and the conversion between what an
+//! observer measures (a direction and an energy) and a null covariant momentum.
+//!
+//! Cameras, surfaces and lights all live in such frames (physics notes, "Local frames").
+
+use crate::metric::Metric;
+use crate::tensor::{contract, quadratic, Covector4, Matrix4, Vector4};
+
+/// Orthonormal frame `e_(a)^μ` at one event: `e[0]` is the observer's 4-velocity, `e[1..4]` its
+/// spatial axes, right-handed. Components are contravariant, in the metric's chart.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tetrad {
+    pub e: [Vector4; 4],
+}
+
+/// Why no frame could be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameError {
+    /// The requested observer's worldline would not be timelike here (a static observer inside
+    /// an ergosphere or horizon, a speed ≥ c).
+    NotTimelike,
+    /// The metric is degenerate or not finite here.
+    Degenerate,
+}
+
+impl std::fmt::Display for FrameError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FrameError::NotTimelike => write!(f, "no timelike observer of that kind exists here"),
+            FrameError::Degenerate => write!(f, "the metric is degenerate here"),
+        }
+    }
+}
+
+impl std::error::Error for FrameError {}
+
+impl Tetrad {
+    /// Frame of the observer with 4-velocity `u` (any positive multiple; normalised here). Its
+    /// spatial axes are the coordinate axes projected orthogonal to `u` and orthonormalised
+    /// symmetrically (Löwdin 1950), so the frame depends on no axis order and follows the chart's
+    /// x, y, z as closely as the metric allows.
+    pub fn with_velocity(
+        metric: &dyn Metric,
+        x: &Vector4,
+        u: Vector4,
+    ) -> Result<Tetrad, FrameError> {
+        let g = metric.metric(x);
+        if !g.iter().flatten().all(|v| v.is_finite()) {
+            return Err(FrameError::Degenerate);
+        }
+        let norm2 = quadratic(&g, &u, &u);
+        if !(norm2 < 0.0) || u[0] <= 0.0 && norm2.is_nan() {
+            return Err(FrameError::NotTimelike);
+        }
+        let u = u.map(|c| c / (-norm2).sqrt());
+        let project = |v: Vector4| {
+            let c = quadratic(&g, &v, &u);
+            std::array::from_fn::<f64, 4, _>(|k| v[k] + c * u[k])
+        };
+        let axes: [Vector4; 3] = std::array::from_fn(|i| {
+            let mut v = [0.0; 4];
+            v[i + 1] = 1.0;
+            project(v)
+        });
+        let s = nalgebra::Matrix3::from_fn(|i, j| quadratic(&g, &axes[i], &axes[j]));
+        let eig = nalgebra::SymmetricEigen::new(s);
+        if eig.eigenvalues.iter().any(|&l| !(l > 0.0)) {
+            return Err(FrameError::Degenerate);
+        }
+        let inv_sqrt = eig.eigenvectors
+            * nalgebra::Matrix3::from_diagonal(&eig.eigenvalues.map(|l| 1.0 / l.sqrt()))
+            * eig.eigenvectors.transpose();
+        let spatial: [Vector4; 3] = std::array::from_fn(|i| {
+            std::array::from_fn(|k| (0..3).map(|j| inv_sqrt[(i, j)] * axes[j][k]).sum())
+        });
+        Ok(Tetrad {
+            e: [u, spatial[0], spatial[1], spatial[2]],
+        })
+    }
+
+    /// The static observer, at rest in the chart (`u ∝ ∂_t`). Exists where `∂_t` is timelike:
+    /// outside horizons, and outside the ergosphere of a spinning hole.
+    pub fn static_observer(metric: &dyn Metric, x: &Vector4) -> Result<Tetrad, FrameError> {
+        Self::with_velocity(metric, x, [1.0, 0.0, 0.0, 0.0])
+    }
+
+    /// The normal (Eulerian) observer of the chart's `t = const` slices, `u^μ ∝ −g^{μt}`. In
+    /// Kerr–Schild charts it exists everywhere, the horizon and ergosphere included.
+    pub fn normal_observer(metric: &dyn Metric, x: &Vector4) -> Result<Tetrad, FrameError> {
+        let ginv = metric.inverse_metric(x);
+        Self::with_velocity(
+            metric,
+            x,
+            [-ginv[0][0], -ginv[1][0], -ginv[2][0], -ginv[3][0]],
+        )
+    }
+
+    /// The static observer where one exists, else the normal observer: the frame nullpath uses
+    /// for cameras and surfaces unless told otherwise.
+    pub fn local_observer(metric: &dyn Metric, x: &Vector4) -> Result<Tetrad, FrameError> {
+        Self::static_observer(metric, x).or_else(|_| Self::normal_observer(metric, x))
+    }
+
+    /// The frame of an observer moving with 3-velocity `v` (units of c, `|v| < 1`) as measured in
+    /// this frame: a pure Lorentz boost, so aberration and Doppler shift follow.
+    pub fn boosted(&self, v: [f64; 3]) -> Result<Tetrad, FrameError> {
+        let v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        if !(v2 < 1.0) {
+            return Err(FrameError::NotTimelike);
+        }
+        let gamma = 1.0 / (1.0 - v2).sqrt();
+        let k = if v2 > 0.0 { (gamma - 1.0) / v2 } else { 0.0 };
+        let e = &self.e;
+        let comb = |c: [f64; 4]| -> Vector4 {
+            std::array::from_fn(|m| (0..4).map(|a| c[a] * e[a][m]).sum())
+        };
+        let u = comb([gamma, gamma * v[0], gamma * v[1], gamma * v[2]]);
+        let axis = |j: usize| {
+            let mut c = [gamma * v[j], 0.0, 0.0, 0.0];
+            for i in 0..3 {
+                c[i + 1] = if i == j { 1.0 } else { 0.0 } + k * v[i] * v[j];
+            }
+            comb(c)
+        };
+        Ok(Tetrad {
+            e: [u, axis(0), axis(1), axis(2)],
+        })
+    }
+
+    /// Covariant momentum of a backward-traced ray that leaves this observer along unit direction
+    /// `n` (frame components) with energy `energy`: `p = E(−e_(0) + nⁱ e_(i))`, lowered with `g`.
+    /// The photon it describes arrives at the observer travelling along `−n`.
+    pub fn backward_momentum(&self, g: &Matrix4, n: [f64; 3], energy: f64) -> Covector4 {
+        let v: Vector4 = std::array::from_fn(|m| {
+            energy
+                * (-self.e[0][m] + n[0] * self.e[1][m] + n[1] * self.e[2][m] + n[2] * self.e[3][m])
+        });
+        contract(g, &v)
+    }
+
+    /// Inverse of [`Tetrad::backward_momentum`]: the direction `n` and energy `E` this observer
+    /// measures for a backward-traced momentum, `E = p_μ e_(0)^μ`, `nⁱ = p_μ e_(i)^μ / E`.
+    pub fn backward_direction(&self, p: &Covector4) -> ([f64; 3], f64) {
+        let dot = |v: &Vector4| p[0] * v[0] + p[1] * v[1] + p[2] * v[2] + p[3] * v[3];
+        let energy = dot(&self.e[0]);
+        let n = [
+            dot(&self.e[1]) / energy,
+            dot(&self.e[2]) / energy,
+            dot(&self.e[3]) / energy,
+        ];
+        (n, energy)
+    }
+
+    /// Largest deviation of `g(e_a, e_b)` from `η_ab`.
+    pub fn orthonormality_error(&self, g: &Matrix4) -> f64 {
+        let mut worst: f64 = 0.0;
+        for a in 0..4 {
+            for b in 0..4 {
+                let eta = if a != b {
+                    0.0
+                } else if a == 0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                worst = worst.max((quadratic(g, &self.e[a], &self.e[b]) - eta).abs());
+            }
+        }
+        worst
+    }
+
+    /// Orientation of the spatial triad: `+1` right-handed with respect to the chart's x, y, z.
+    pub fn handedness(&self) -> f64 {
+        let m = nalgebra::Matrix3::from_fn(|i, j| self.e[i + 1][j + 1]);
+        m.determinant().signum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metric::{Ellis, Kerr, Minkowski, Schwarzschild};
+    use proptest::prelude::*;
+
+    fn metrics() -> Vec<Box<dyn Metric>> {
+        vec![
+            Box::new(Minkowski),
+            Box::new(Schwarzschild::new(1.0)),
+            Box::new(Kerr::new(1.0, 0.9)),
+            Box::new(Kerr::new(1.0, -0.5)),
+            Box::new(Ellis::new(1.0)),
+            Box::new(crate::metric::UserMetric(
+                crate::metric::user::tests::UserSchwarzschild { mass: 1.0 },
+            )),
+        ]
+    }
+
+    fn unit(theta: f64, phi: f64) -> [f64; 3] {
+        [
+            theta.sin() * phi.cos(),
+            theta.sin() * phi.sin(),
+            theta.cos(),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        /// Every metric, random places outside horizons, random boosts and directions: the frame
+        /// is orthonormal and right-handed, a direction survives the trip to a momentum and
+        /// back, and the momentum is null.
+        #[test]
+        fn frames_and_momenta(r in 3.5f64..80.0, theta in 0.0f64..std::f64::consts::PI, phi in 0.0f64..6.3,
+                              dt in 0.0f64..3.2, dp in 0.0f64..6.3, speed in 0.0f64..0.95,
+                              vt in 0.0f64..3.2, vp in 0.0f64..6.3, energy in 0.1f64..10.0) {
+            for m in metrics() {
+                let pos = unit(theta, phi);
+                let x = [0.7, r * pos[0], r * pos[1], r * pos[2]];
+                let g = m.metric(&x);
+                let base = Tetrad::local_observer(m.as_ref(), &x).unwrap();
+                let v = unit(vt, vp).map(|c| c * speed);
+                for frame in [base, base.boosted(v).unwrap()] {
+                    prop_assert!(frame.orthonormality_error(&g) < 1e-11, "orthonormality {}", frame.orthonormality_error(&g));
+                    prop_assert!(frame.handedness() > 0.0);
+                    let n = unit(dt, dp);
+                    let p = frame.backward_momentum(&g, n, energy);
+                    let h = m.hamiltonian(&x, &p);
+                    prop_assert!(h.abs() < 1e-11 * energy * energy, "H = {h}");
+                    let (n2, e2) = frame.backward_direction(&p);
+                    prop_assert!((e2 - energy).abs() < 1e-11 * energy);
+                    for k in 0..3 {
+                        prop_assert!((n2[k] - n[k]).abs() < 1e-11);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn static_observer_fails_in_the_ergosphere_but_normal_observer_exists() {
+        let kerr = Kerr::new(1.0, 0.9);
+        // On the equator just outside the horizon (r₊ ≈ 1.44) but inside the ergosphere (r = 2).
+        let x = [0.0, 1.6, 0.0, 0.0];
+        assert_eq!(
+            Tetrad::static_observer(&kerr, &x),
+            Err(FrameError::NotTimelike)
+        );
+        let n = Tetrad::normal_observer(&kerr, &x).unwrap();
+        assert!(n.orthonormality_error(&kerr.metric(&x)) < 1e-12);
+    }
+
+    #[test]
+    fn boost_at_speed_of_light_is_an_error() {
+        let t = Tetrad::static_observer(&Minkowski, &[0.0; 4]).unwrap();
+        assert!(t.boosted([1.0, 0.0, 0.0]).is_err());
+        assert!(t.boosted([0.6, 0.8, 0.0]).is_err());
+    }
+
+    #[test]
+    fn boosted_observer_sees_aberration() {
+        // Flat space: an observer moving at v along +x sees a source at 90° in the rest frame
+        // at cos θ' = v (light aberration).
+        let rest = Tetrad::static_observer(&Minkowski, &[0.0; 4]).unwrap();
+        let v = 0.6;
+        let moving = rest.boosted([v, 0.0, 0.0]).unwrap();
+        // Photon arriving from +y in the rest frame: backward ray leaves along +y.
+        let p = rest.backward_momentum(&crate::tensor::ETA, [0.0, 1.0, 0.0], 1.0);
+        let (n, e) = moving.backward_direction(&p);
+        assert!((n[0] - v).abs() < 1e-14, "cos θ' = {}", n[0]);
+        // Doppler: E' = γ E for a photon perpendicular in the rest frame.
+        assert!((e - 1.25).abs() < 1e-14);
+    }
+
+    #[test]
+    fn schwarzschild_static_frame_is_radially_stretched() {
+        // The static observer measures the radial coordinate direction as stretched by
+        // 1/√(1 − 2M/r) relative to the tangential ones; its first axis at (x, 0, 0) is radial.
+        let m = Schwarzschild::new(1.0);
+        let x = [0.0, 4.0, 0.0, 0.0];
+        let t = Tetrad::static_observer(&m, &x).unwrap();
+        assert!(t.e[1][2].abs() < 1e-15 && t.e[1][3].abs() < 1e-15);
+        assert!((t.e[2][2] - 1.0).abs() < 1e-14 && (t.e[3][3] - 1.0).abs() < 1e-14);
+    }
+}
