@@ -12,10 +12,9 @@ pub mod analytic;
 pub mod geodesic;
 pub mod metric;
 pub mod observer;
+pub mod scattering;
 pub mod tensor;
 
 pub use geodesic::{Fate, Integrator, State, Trace, TraceSettings, Visit};
-pub use metric::{
-    Ellis, Kerr, Metric, MetricFunction, Minkowski, Region, Schwarzschild, UserMetric,
-};
+pub use metric::{Ellis, Kerr, Metric, MetricFunction, Minkowski, Region, Schwarzschild, Spacetime, UserMetric};
 pub use observer::Tetrad;

@@ -39,11 +39,7 @@ impl Tetrad {
     /// spatial axes are the coordinate axes projected orthogonal to `u` and orthonormalised
     /// symmetrically (Löwdin 1950), so the frame depends on no axis order and follows the chart's
     /// x, y, z as closely as the metric allows.
-    pub fn with_velocity(
-        metric: &dyn Metric,
-        x: &Vector4,
-        u: Vector4,
-    ) -> Result<Tetrad, FrameError> {
+    pub fn with_velocity(metric: &dyn Metric, x: &Vector4, u: Vector4) -> Result<Tetrad, FrameError> {
         let g = metric.metric(x);
         if !g.iter().flatten().all(|v| v.is_finite()) {
             return Err(FrameError::Degenerate);
@@ -70,12 +66,9 @@ impl Tetrad {
         let inv_sqrt = eig.eigenvectors
             * nalgebra::Matrix3::from_diagonal(&eig.eigenvalues.map(|l| 1.0 / l.sqrt()))
             * eig.eigenvectors.transpose();
-        let spatial: [Vector4; 3] = std::array::from_fn(|i| {
-            std::array::from_fn(|k| (0..3).map(|j| inv_sqrt[(i, j)] * axes[j][k]).sum())
-        });
-        Ok(Tetrad {
-            e: [u, spatial[0], spatial[1], spatial[2]],
-        })
+        let spatial: [Vector4; 3] =
+            std::array::from_fn(|i| std::array::from_fn(|k| (0..3).map(|j| inv_sqrt[(i, j)] * axes[j][k]).sum()));
+        Ok(Tetrad { e: [u, spatial[0], spatial[1], spatial[2]] })
     }
 
     /// The static observer, at rest in the chart (`u ∝ ∂_t`). Exists where `∂_t` is timelike:
@@ -88,11 +81,7 @@ impl Tetrad {
     /// Kerr–Schild charts it exists everywhere, the horizon and ergosphere included.
     pub fn normal_observer(metric: &dyn Metric, x: &Vector4) -> Result<Tetrad, FrameError> {
         let ginv = metric.inverse_metric(x);
-        Self::with_velocity(
-            metric,
-            x,
-            [-ginv[0][0], -ginv[1][0], -ginv[2][0], -ginv[3][0]],
-        )
+        Self::with_velocity(metric, x, [-ginv[0][0], -ginv[1][0], -ginv[2][0], -ginv[3][0]])
     }
 
     /// The static observer where one exists, else the normal observer: the frame nullpath uses
@@ -111,9 +100,7 @@ impl Tetrad {
         let gamma = 1.0 / (1.0 - v2).sqrt();
         let k = if v2 > 0.0 { (gamma - 1.0) / v2 } else { 0.0 };
         let e = &self.e;
-        let comb = |c: [f64; 4]| -> Vector4 {
-            std::array::from_fn(|m| (0..4).map(|a| c[a] * e[a][m]).sum())
-        };
+        let comb = |c: [f64; 4]| -> Vector4 { std::array::from_fn(|m| (0..4).map(|a| c[a] * e[a][m]).sum()) };
         let u = comb([gamma, gamma * v[0], gamma * v[1], gamma * v[2]]);
         let axis = |j: usize| {
             let mut c = [gamma * v[j], 0.0, 0.0, 0.0];
@@ -122,9 +109,7 @@ impl Tetrad {
             }
             comb(c)
         };
-        Ok(Tetrad {
-            e: [u, axis(0), axis(1), axis(2)],
-        })
+        Ok(Tetrad { e: [u, axis(0), axis(1), axis(2)] })
     }
 
     /// Covariant momentum of a backward-traced ray that leaves this observer along unit direction
@@ -132,8 +117,7 @@ impl Tetrad {
     /// The photon it describes arrives at the observer travelling along `−n`.
     pub fn backward_momentum(&self, g: &Matrix4, n: [f64; 3], energy: f64) -> Covector4 {
         let v: Vector4 = std::array::from_fn(|m| {
-            energy
-                * (-self.e[0][m] + n[0] * self.e[1][m] + n[1] * self.e[2][m] + n[2] * self.e[3][m])
+            energy * (-self.e[0][m] + n[0] * self.e[1][m] + n[1] * self.e[2][m] + n[2] * self.e[3][m])
         });
         contract(g, &v)
     }
@@ -143,11 +127,7 @@ impl Tetrad {
     pub fn backward_direction(&self, p: &Covector4) -> ([f64; 3], f64) {
         let dot = |v: &Vector4| p[0] * v[0] + p[1] * v[1] + p[2] * v[2] + p[3] * v[3];
         let energy = dot(&self.e[0]);
-        let n = [
-            dot(&self.e[1]) / energy,
-            dot(&self.e[2]) / energy,
-            dot(&self.e[3]) / energy,
-        ];
+        let n = [dot(&self.e[1]) / energy, dot(&self.e[2]) / energy, dot(&self.e[3]) / energy];
         (n, energy)
     }
 
@@ -189,18 +169,12 @@ mod tests {
             Box::new(Kerr::new(1.0, 0.9)),
             Box::new(Kerr::new(1.0, -0.5)),
             Box::new(Ellis::new(1.0)),
-            Box::new(crate::metric::UserMetric(
-                crate::metric::user::tests::UserSchwarzschild { mass: 1.0 },
-            )),
+            Box::new(crate::metric::UserMetric(crate::metric::user::tests::UserSchwarzschild { mass: 1.0 })),
         ]
     }
 
     fn unit(theta: f64, phi: f64) -> [f64; 3] {
-        [
-            theta.sin() * phi.cos(),
-            theta.sin() * phi.sin(),
-            theta.cos(),
-        ]
+        [theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()]
     }
 
     proptest! {
@@ -241,10 +215,7 @@ mod tests {
         let kerr = Kerr::new(1.0, 0.9);
         // On the equator just outside the horizon (r₊ ≈ 1.44) but inside the ergosphere (r = 2).
         let x = [0.0, 1.6, 0.0, 0.0];
-        assert_eq!(
-            Tetrad::static_observer(&kerr, &x),
-            Err(FrameError::NotTimelike)
-        );
+        assert_eq!(Tetrad::static_observer(&kerr, &x), Err(FrameError::NotTimelike));
         let n = Tetrad::normal_observer(&kerr, &x).unwrap();
         assert!(n.orthonormality_error(&kerr.metric(&x)) < 1e-12);
     }

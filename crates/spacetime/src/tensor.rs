@@ -11,12 +11,7 @@ pub type Covector4 = [f64; 4];
 pub type Matrix4 = [[f64; 4]; 4];
 
 /// Minkowski metric η = diag(−1, 1, 1, 1); it is its own inverse.
-pub const ETA: Matrix4 = [
-    [-1.0, 0.0, 0.0, 0.0],
-    [0.0, 1.0, 0.0, 0.0],
-    [0.0, 0.0, 1.0, 0.0],
-    [0.0, 0.0, 0.0, 1.0],
-];
+pub const ETA: Matrix4 = [[-1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]];
 
 /// `T^{μν} p_ν` (raise with an inverse metric) or `T_{μν} v^ν` (lower with a metric).
 #[inline]
@@ -65,11 +60,7 @@ pub fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 
 #[inline]
 pub fn cross3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 #[inline]
@@ -94,12 +85,7 @@ mod tests {
 
     #[test]
     fn inverse_of_a_boosted_metric() {
-        let m = [
-            [-2.0, 0.3, 0.0, 0.1],
-            [0.3, 1.5, 0.2, 0.0],
-            [0.0, 0.2, 1.0, 0.0],
-            [0.1, 0.0, 0.0, 3.0],
-        ];
+        let m = [[-2.0, 0.3, 0.0, 0.1], [0.3, 1.5, 0.2, 0.0], [0.0, 0.2, 1.0, 0.0], [0.1, 0.0, 0.0, 3.0]];
         let inv = invert(&m).unwrap();
         for i in 0..4 {
             let row = contract(&inv, &[m[0][i], m[1][i], m[2][i], m[3][i]]);

@@ -76,38 +76,14 @@ pub fn attempt<const N: usize>(
 ) -> Attempt<N> {
     let k2 = f(t0 + C2 * h, &combine(y0, h, &[(A21, k1)]));
     let k3 = f(t0 + C3 * h, &combine(y0, h, &[(A31, k1), (A32, &k2)]));
-    let k4 = f(
-        t0 + C4 * h,
-        &combine(y0, h, &[(A41, k1), (A42, &k2), (A43, &k3)]),
-    );
-    let k5 = f(
-        t0 + C5 * h,
-        &combine(y0, h, &[(A51, k1), (A52, &k2), (A53, &k3), (A54, &k4)]),
-    );
-    let k6 = f(
-        t0 + h,
-        &combine(
-            y0,
-            h,
-            &[(A61, k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)],
-        ),
-    );
-    let y1 = combine(
-        y0,
-        h,
-        &[(A71, k1), (A73, &k3), (A74, &k4), (A75, &k5), (A76, &k6)],
-    );
+    let k4 = f(t0 + C4 * h, &combine(y0, h, &[(A41, k1), (A42, &k2), (A43, &k3)]));
+    let k5 = f(t0 + C5 * h, &combine(y0, h, &[(A51, k1), (A52, &k2), (A53, &k3), (A54, &k4)]));
+    let k6 = f(t0 + h, &combine(y0, h, &[(A61, k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)]));
+    let y1 = combine(y0, h, &[(A71, k1), (A73, &k3), (A74, &k4), (A75, &k5), (A76, &k6)]);
     let k7 = f(t0 + h, &y1);
-    let error = std::array::from_fn(|i| {
-        h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i])
-    });
-    Attempt {
-        y0: *y0,
-        y1,
-        error,
-        h,
-        k: [*k1, k2, k3, k4, k5, k6, k7],
-    }
+    let error =
+        std::array::from_fn(|i| h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]));
+    Attempt { y0: *y0, y1, error, h, k: [*k1, k2, k3, k4, k5, k6, k7] }
 }
 
 impl<const N: usize> Attempt<N> {
@@ -125,13 +101,7 @@ impl<const N: usize> Attempt<N> {
             let ydiff = self.y1[i] - self.y0[i];
             let bspl = h * k[0][i] - ydiff;
             let r4 = ydiff - h * k[6][i] - bspl;
-            let r5 = h
-                * (D1 * k[0][i]
-                    + D3 * k[2][i]
-                    + D4 * k[3][i]
-                    + D5 * k[4][i]
-                    + D6 * k[5][i]
-                    + D7 * k[6][i]);
+            let r5 = h * (D1 * k[0][i] + D3 * k[2][i] + D4 * k[3][i] + D5 * k[4][i] + D6 * k[5][i] + D7 * k[6][i]);
             self.y0[i] + theta * (ydiff + t1 * (bspl + theta * (r4 + t1 * r5)))
         })
     }
@@ -158,11 +128,7 @@ mod tests {
         let f = |_t: f64, y: &[f64; 1]| [y[0]];
         let err = |h: f64| (attempt(&f, 0.0, &[1.0], &[1.0], h).y1[0] - h.exp()).abs();
         let ratio = err(0.1) / err(0.05);
-        assert!(
-            (ratio.log2() - 6.0).abs() < 0.3,
-            "observed order {}",
-            ratio.log2()
-        );
+        assert!((ratio.log2() - 6.0).abs() < 0.3, "observed order {}", ratio.log2());
     }
 
     #[test]

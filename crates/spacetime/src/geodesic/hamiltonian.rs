@@ -2,7 +2,7 @@
 //! with RK4 or Dormand–Prince 5(4), a step cap proportional to the distance from the centre, and
 //! the ray's fate decided from the metric's horizon, regions and escape radius.
 
-use super::{dopri5, rk4, Failure, Fate, Integrator, State, Trace, TraceSettings, Visit};
+use super::{dopri5, Failure, Fate, Integrator, Interpolant, State, Trace, TraceSettings, Visit};
 use crate::metric::{Metric, Region};
 use crate::tensor::{Covector4, Vector4};
 
@@ -10,17 +10,12 @@ type Y = [f64; 8];
 
 #[inline]
 fn pack(s: &State) -> Y {
-    [
-        s.x[0], s.x[1], s.x[2], s.x[3], s.p[0], s.p[1], s.p[2], s.p[3],
-    ]
+    [s.x[0], s.x[1], s.x[2], s.x[3], s.p[0], s.p[1], s.p[2], s.p[3]]
 }
 
 #[inline]
 fn unpack(y: &Y) -> State {
-    State {
-        x: [y[0], y[1], y[2], y[3]],
-        p: [y[4], y[5], y[6], y[7]],
-    }
+    State { x: [y[0], y[1], y[2], y[3]], p: [y[4], y[5], y[6], y[7]] }
 }
 
 /// One accepted step, with dense output for the state anywhere inside it.
@@ -30,29 +25,13 @@ pub struct HamiltonianStep {
     pub end: State,
     /// Affine parameter length of the step.
     pub h: f64,
-    interpolant: Interpolant,
-}
-
-#[derive(Clone, Copy, Debug)]
-enum Interpolant {
-    Dopri(dopri5::Attempt<8>),
-    Hermite { d0: Y, d1: Y },
+    interpolant: Interpolant<8>,
 }
 
 impl HamiltonianStep {
     /// State at fraction `θ ∈ [0, 1]` of the step.
     pub fn at(&self, theta: f64) -> State {
-        match &self.interpolant {
-            Interpolant::Dopri(a) => unpack(&a.dense(theta)),
-            Interpolant::Hermite { d0, d1 } => unpack(&rk4::hermite(
-                &pack(&self.start),
-                d0,
-                &pack(&self.end),
-                d1,
-                self.h,
-                theta,
-            )),
-        }
+        unpack(&self.interpolant.dense(theta))
     }
 }
 
@@ -76,15 +55,7 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
             // A cautious first step; error control grows it within a few steps.
             Integrator::Adaptive { .. } => f64::INFINITY,
         };
-        let mut tracer = Self {
-            metric,
-            settings,
-            y,
-            dy,
-            h: h0,
-            lambda: 0.0,
-            steps: 0,
-        };
+        let mut tracer = Self { metric, settings, y, dy, h: h0, lambda: 0.0, steps: 0 };
         if matches!(settings.integrator, Integrator::Adaptive { .. }) {
             tracer.h = 0.01 * tracer.step_cap();
         }
@@ -119,20 +90,19 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
     /// distance from the centre, so rays stride far from masses and creep near them.
     fn step_cap(&self) -> f64 {
         let r = (self.y[1] * self.y[1] + self.y[2] * self.y[2] + self.y[3] * self.y[3]).sqrt();
-        let v =
-            (self.dy[1] * self.dy[1] + self.dy[2] * self.dy[2] + self.dy[3] * self.dy[3]).sqrt();
+        let v = (self.dy[1] * self.dy[1] + self.dy[2] * self.dy[2] + self.dy[3] * self.dy[3]).sqrt();
         self.settings.max_step_fraction * r.max(self.metric.length_scale()) / v
     }
 
     /// Scaled error norm of an attempt: rotation-invariant blocks for position, time and
     /// momentum, each relative to its own size.
-    fn error_norm(&self, a: &dopri5::Attempt<8>, rtol: f64) -> f64 {
+    fn error_norm(&self, y0: &Y, y1: &Y, error: &Y, rtol: f64) -> f64 {
         let scale = self.metric.length_scale();
         let n3 = |v: &Y, i: usize| (v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]).sqrt();
         let n4 = |v: &Y| (v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]).sqrt();
-        let pos = n3(&a.error, 1) / (rtol * (scale + n3(&a.y0, 1).max(n3(&a.y1, 1))));
-        let time = a.error[0].abs() / (rtol * (scale + a.y0[0].abs().max(a.y1[0].abs())));
-        let mom = n4(&a.error) / (rtol * n4(&a.y0).max(n4(&a.y1)));
+        let pos = n3(error, 1) / (rtol * (scale + n3(y0, 1).max(n3(y1, 1))));
+        let time = error[0].abs() / (rtol * (scale + y0[0].abs().max(y1[0].abs())));
+        let mom = n4(error) / (rtol * n4(y0).max(n4(y1)));
         pos.max(time).max(mom)
     }
 
@@ -143,42 +113,27 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
         }
         let f = |_t: f64, y: &Y| Self::rhs(self.metric, y);
         let cap = self.step_cap().min(h_limit);
-        let (y1, d1, h, interpolant) = match self.settings.integrator {
-            Integrator::Rk4 { step } => {
-                let h = step.min(cap);
-                let y1 = rk4::step(&f, self.lambda, &self.y, &self.dy, h);
-                let d1 = Self::rhs(self.metric, &y1);
-                (y1, d1, h, Interpolant::Hermite { d0: self.dy, d1 })
+        let mut h = self.h.min(cap);
+        let interpolant = loop {
+            let (step, error) = Interpolant::step(self.settings.integrator, &f, self.lambda, &self.y, &self.dy, h);
+            let (Some(error), Integrator::Adaptive { rtol }) = (error, self.settings.integrator) else {
+                break step;
+            };
+            let err = self.error_norm(&self.y, &step.y1(), &error, rtol);
+            if err <= 1.0 {
+                self.h = h * dopri5::step_factor(err);
+                break step;
             }
-            Integrator::Adaptive { rtol } => {
-                let mut h = self.h.min(cap);
-                loop {
-                    let a = dopri5::attempt(&f, self.lambda, &self.y, &self.dy, h);
-                    let err = self.error_norm(&a, rtol);
-                    if err <= 1.0 {
-                        self.h = h * dopri5::step_factor(err);
-                        break (a.y1, a.end_derivative(), h, Interpolant::Dopri(a));
-                    }
-                    if !err.is_finite() {
-                        h *= 0.2;
-                    } else {
-                        h *= dopri5::step_factor(err).min(1.0);
-                    }
-                    if h <= 1e-14 * cap || !h.is_finite() {
-                        return Err(Failure::StepUnderflow);
-                    }
-                }
+            h *= if err.is_finite() { dopri5::step_factor(err).min(1.0) } else { 0.2 };
+            if h <= 1e-14 * cap || !h.is_finite() {
+                return Err(Failure::StepUnderflow);
             }
         };
+        let (y1, d1) = (interpolant.y1(), interpolant.end_derivative());
         if !y1.iter().chain(d1.iter()).all(|v| v.is_finite()) {
             return Err(Failure::NonFinite);
         }
-        let step = HamiltonianStep {
-            start: unpack(&self.y),
-            end: unpack(&y1),
-            h,
-            interpolant,
-        };
+        let step = HamiltonianStep { start: unpack(&self.y), end: unpack(&y1), h, interpolant };
         self.y = y1;
         self.dy = d1;
         self.lambda += h;
@@ -196,13 +151,9 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
         if self.metric.radius(&x) > self.settings.escape_radius && self.metric.is_outgoing(&x, &v) {
             let w = self.metric.to_world(&x, &v);
             return Some(if w.region == start_region {
-                Fate::Escaped {
-                    direction: w.direction,
-                }
+                Fate::Escaped { direction: w.direction }
             } else {
-                Fate::Traversed {
-                    direction: w.direction,
-                }
+                Fate::Traversed { direction: w.direction }
             });
         }
         None
@@ -227,12 +178,7 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
                 Err(failure) => break Fate::Failed(failure),
             }
         };
-        Trace {
-            fate,
-            steps: self.steps,
-            max_abs_hamiltonian: max_h,
-            end: self.state(),
-        }
+        Trace { fate, steps: self.steps, max_abs_hamiltonian: max_h, end: self.state() }
     }
 }
 

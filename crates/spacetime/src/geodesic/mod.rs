@@ -9,10 +9,12 @@
 
 pub mod dopri5;
 mod hamiltonian;
+mod interpolant;
 pub mod plane;
 pub mod rk4;
 
 pub use hamiltonian::{angular_momentum_z, energy, trace, HamiltonianStep, HamiltonianTracer};
+pub use interpolant::Interpolant;
 
 use crate::tensor::{Covector4, Vector4};
 

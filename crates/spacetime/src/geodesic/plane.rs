@@ -1,1 +1,508 @@
-//! plane
+//! In-plane integration for static, spherically symmetric spacetimes.
+//!
+//! Every geodesic of such a spacetime stays in one plane through the centre (physics notes,
+//! "Charts without trouble"), so a ray is integrated in its own plane with the azimuth `φ` as
+//! parameter and `u = 1/s` (s the chart radius) as unknown, in Binet form `u'' = −u + G(u)`. The
+//! flat part is solved exactly, `u₀(φ) = A cos(φ − φₛ) + B sin(φ − φₛ)`, and only the deviation
+//! `w = u − u₀` is integrated: weak-field bending keeps its full relative precision, straight
+//! rays cost nothing, and there is no pole anywhere — the plane is chosen per ray.
+//!
+//! A wormhole's lower region uses `ũ = 1/(b₀² u)`, which obeys the same equation (the isometry
+//! `s ↦ b₀²/s`); the tracer switches at the throat.
+
+use super::{dopri5, Failure, Fate, Integrator, Interpolant, TraceSettings, Visit};
+use crate::metric::{Metric, Region};
+use crate::tensor::{dot3, norm3, normalize3, scale3};
+use std::f64::consts::PI;
+
+/// A static, spherically symmetric metric reduced to the plane of a ray. `u` is the inverse
+/// chart radius, `'` is `d/dφ`, and the photon's energy is 1 so `b = L/E = L`.
+pub trait PlaneMetric: Metric {
+    /// `G(u)` in `u'' = −u + G(u)`, for impact parameter `b` (`inv_b2 = 1/b²`).
+    fn binet_source(&self, u: f64, inv_b2: f64) -> f64;
+    /// `(u')²` on a null ray (the first integral of the Binet equation).
+    fn slope_squared(&self, u: f64, inv_b2: f64) -> f64;
+    /// The 4-D Hamiltonian `½ g^{μν} p_μ p_ν` of the ray at `(u, u')`, with `E = 1`.
+    fn plane_hamiltonian(&self, u: f64, du: f64, b: f64) -> f64;
+    /// `σ(u)`: a static observer sees the ray's direction as `(n_r, n_φ) ∝ (−σ u', u)`.
+    fn radial_stretch(&self, u: f64) -> f64;
+    /// `b = impact_factor(u) · n_φ` for a ray leaving a static observer at `u`.
+    fn impact_factor(&self, u: f64) -> f64;
+    /// World (areal) radius at `u`.
+    fn world_radius(&self, u: f64) -> f64;
+    /// Inverse of [`PlaneMetric::world_radius`]; `None` inside a throat.
+    fn u_of_world_radius(&self, rho: f64) -> Option<f64>;
+    /// `u` of the horizon: rays reaching it are captured.
+    fn capture_u(&self) -> Option<f64> {
+        None
+    }
+    /// `u` of a wormhole throat, where the tracer moves to the other region.
+    fn throat_u(&self) -> Option<f64> {
+        None
+    }
+    /// Flat space: every ray is one straight step.
+    fn is_flat(&self) -> bool {
+        false
+    }
+}
+
+/// A ray ready for in-plane integration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlaneRay {
+    /// Chart direction of the start point (`φ = 0`).
+    pub e1: [f64; 3],
+    /// In-plane unit vector orthogonal to `e1`, towards increasing `φ` (the ray's sense).
+    pub e2: [f64; 3],
+    pub region: Region,
+    pub u: f64,
+    pub du: f64,
+    /// Impact parameter `b = L/E`.
+    pub b: f64,
+}
+
+/// Where a ray starts: in a plane, or along a radius (impact parameter zero, no plane).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PlaneStart {
+    Plane(PlaneRay),
+    /// Straight along a radius from world point `from` in direction `direction`.
+    Radial {
+        region: Region,
+        from: [f64; 3],
+        direction: [f64; 3],
+    },
+}
+
+fn region_sign(region: Region) -> f64 {
+    match region {
+        Region::Upper => 1.0,
+        Region::Lower => -1.0,
+    }
+}
+
+fn other(region: Region) -> Region {
+    match region {
+        Region::Upper => Region::Lower,
+        Region::Lower => Region::Upper,
+    }
+}
+
+impl PlaneStart {
+    /// The backward-traced ray that leaves a static observer at world `position` of `region`
+    /// along the unit `direction` measured in that observer's frame (axes aligned with the
+    /// world's). `None` where no static observer exists (inside a horizon or a throat).
+    pub fn from_observer<M: PlaneMetric + ?Sized>(
+        metric: &M,
+        region: Region,
+        position: [f64; 3],
+        direction: [f64; 3],
+    ) -> Option<PlaneStart> {
+        let rho = norm3(&position);
+        let u = metric.u_of_world_radius(rho)?;
+        if metric.capture_u().is_some_and(|uc| u >= uc) {
+            return None;
+        }
+        let radial = scale3(&position, 1.0 / rho);
+        let d_r = dot3(&direction, &radial);
+        let tangent = std::array::from_fn(|i| direction[i] - d_r * radial[i]);
+        let d_phi = norm3(&tangent);
+        if d_phi <= 1e-12 {
+            return Some(PlaneStart::Radial { region, from: position, direction: scale3(&radial, d_r.signum()) });
+        }
+        let sign = region_sign(region);
+        let e1 = scale3(&radial, sign);
+        let e2 = scale3(&tangent, sign / d_phi);
+        let du = -u * d_r / (metric.radial_stretch(u) * d_phi);
+        Some(PlaneStart::Plane(PlaneRay { e1, e2, region, u, du, b: metric.impact_factor(u) * d_phi }))
+    }
+}
+
+impl PlaneRay {
+    /// A ray coming in from infinity in the upper region with impact parameter `b > 0`, starting
+    /// (at infinity) in chart direction `e1` and sweeping towards `e2`.
+    pub fn from_infinity<M: PlaneMetric + ?Sized>(metric: &M, b: f64, e1: [f64; 3], e2: [f64; 3]) -> PlaneRay {
+        let du = metric.slope_squared(0.0, 1.0 / (b * b)).sqrt();
+        PlaneRay { e1, e2, region: Region::Upper, u: 0.0, du, b }
+    }
+}
+
+/// One stretch of a ray between throat crossings: the flat solution's constants and the plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Segment {
+    e1: [f64; 3],
+    e2: [f64; 3],
+    region: Region,
+    phi_start: f64,
+    a: f64,
+    b: f64,
+}
+
+impl Segment {
+    #[inline]
+    fn flat(&self, phi: f64) -> (f64, f64) {
+        let (s, c) = (phi - self.phi_start).sin_cos();
+        (self.a * c + self.b * s, -self.a * s + self.b * c)
+    }
+
+    fn chart_direction(&self, phi: f64) -> ([f64; 3], [f64; 3]) {
+        let (s, c) = phi.sin_cos();
+        let n = std::array::from_fn(|i| c * self.e1[i] + s * self.e2[i]);
+        let t = std::array::from_fn(|i| -s * self.e1[i] + c * self.e2[i]);
+        (n, t)
+    }
+}
+
+/// One accepted step of an in-plane ray.
+#[derive(Clone, Copy, Debug)]
+pub enum PlaneStep {
+    /// `span ≤ 1` is the fraction of the integrator step that belongs to this step (a step is
+    /// cut where it leaves the escape sphere).
+    Curved { segment: SegmentRef, phi0: f64, attempt: Interpolant<2>, span: f64 },
+    /// A straight piece: flat space, or a radial ray. `length` may be infinite.
+    Straight { region: Region, from: [f64; 3], direction: [f64; 3], length: f64 },
+}
+
+/// Opaque copy of a segment carried by a step.
+#[derive(Clone, Copy, Debug)]
+pub struct SegmentRef(Segment);
+
+/// A point along a step in world terms: where, which way (in the static observer's frame, axes
+/// aligned with the world's), and the inverse chart radius there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanePoint {
+    pub region: Region,
+    pub position: [f64; 3],
+    pub direction: [f64; 3],
+}
+
+impl PlaneStep {
+    pub fn region(&self) -> Region {
+        match self {
+            PlaneStep::Curved { segment, .. } => segment.0.region,
+            PlaneStep::Straight { region, .. } => *region,
+        }
+    }
+
+    /// `(φ, u, u')` at fraction `θ` of a curved step.
+    fn curve(segment: &Segment, phi0: f64, attempt: &Interpolant<2>, theta: f64) -> (f64, f64, f64) {
+        let phi = phi0 + theta * attempt.h();
+        let w = attempt.dense(theta);
+        let (u0, du0) = segment.flat(phi);
+        (phi, u0 + w[0], du0 + w[1])
+    }
+
+    /// World position and direction at fraction `θ ∈ [0, 1]` of the step.
+    pub fn point<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> PlanePoint {
+        match self {
+            PlaneStep::Curved { segment, phi0, attempt, span } => {
+                let seg = &segment.0;
+                let (phi, u, du) = Self::curve(seg, *phi0, attempt, theta * span);
+                let sign = region_sign(seg.region);
+                let (n, t) = seg.chart_direction(phi);
+                let (dr, dphi) = (-metric.radial_stretch(u) * du, u);
+                let dir = normalize3(&std::array::from_fn(|i| sign * (dr * n[i] + dphi * t[i])));
+                let rho = metric.world_radius(u);
+                PlanePoint { region: seg.region, position: scale3(&n, sign * rho), direction: dir }
+            }
+            PlaneStep::Straight { region, from, direction, length } => {
+                let s = if length.is_finite() {
+                    theta * length
+                } else if theta > 0.0 {
+                    f64::INFINITY
+                } else {
+                    0.0
+                };
+                PlanePoint {
+                    region: *region,
+                    position: std::array::from_fn(|i| from[i] + s * direction[i]),
+                    direction: *direction,
+                }
+            }
+        }
+    }
+}
+
+/// The outcome of an in-plane trace.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlaneTrace {
+    pub fate: Fate,
+    pub steps: u32,
+    /// Largest `|H|` (4-D Hamiltonian, `E = 1`) at step ends.
+    pub max_abs_hamiltonian: f64,
+    /// Azimuth swept from start to the asymptote, minus π (the bending angle of a ray from
+    /// infinity), computed without cancellation; `NaN` unless the ray escaped or traversed.
+    pub swept_minus_pi: f64,
+}
+
+struct Tracer<'m, M: PlaneMetric + ?Sized> {
+    metric: &'m M,
+    settings: TraceSettings,
+    inv_b2: f64,
+    b: f64,
+    segment: Segment,
+    phi: f64,
+    w: [f64; 2],
+    dw: [f64; 2],
+    h: f64,
+    steps: u32,
+    max_h: f64,
+}
+
+impl<'m, M: PlaneMetric + ?Sized> Tracer<'m, M> {
+    #[inline]
+    fn rhs(metric: &M, segment: &Segment, inv_b2: f64, phi: f64, w: &[f64; 2]) -> [f64; 2] {
+        let (u0, _) = segment.flat(phi);
+        [w[1], -w[0] + metric.binet_source(u0 + w[0], inv_b2)]
+    }
+
+    fn derivative(&self) -> [f64; 2] {
+        Self::rhs(self.metric, &self.segment, self.inv_b2, self.phi, &self.w)
+    }
+
+    fn u_du(&self) -> (f64, f64) {
+        let (u0, du0) = self.segment.flat(self.phi);
+        (u0 + self.w[0], du0 + self.w[1])
+    }
+
+    /// Error relative to the deviation from flat space (with a floor far below the flat
+    /// solution's size), so weak bending is resolved to full relative precision.
+    fn error_norm(&self, y0: &[f64; 2], y1: &[f64; 2], h: f64, error: &[f64; 2], rtol: f64) -> f64 {
+        let amp = |phi: f64, w: &[f64; 2]| {
+            let (u0, du0) = self.segment.flat(phi);
+            (u0 + w[0]).hypot(du0 + w[1])
+        };
+        let dev = (y0[0].abs() + y0[1].abs()).max(y1[0].abs() + y1[1].abs());
+        let floor = 1e-12 * amp(self.phi, y0).max(amp(self.phi + h, y1));
+        error[0].hypot(error[1]) / (rtol * dev.max(floor))
+    }
+
+    fn attempt(&self, h: f64) -> (Interpolant<2>, Option<[f64; 2]>) {
+        let f = |phi: f64, w: &[f64; 2]| Self::rhs(self.metric, &self.segment, self.inv_b2, phi, w);
+        Interpolant::step(self.settings.integrator, &f, self.phi, &self.w, &self.dw, h)
+    }
+
+    /// One accepted step, `Δφ ≤ max_step_fraction` (radians).
+    fn step(&mut self) -> Result<Interpolant<2>, Failure> {
+        if self.steps >= self.settings.max_steps {
+            return Err(Failure::OutOfSteps);
+        }
+        let mut h = self.h.min(self.settings.max_step_fraction);
+        let step = loop {
+            let (step, error) = self.attempt(h);
+            let (Some(error), Integrator::Adaptive { rtol }) = (error, self.settings.integrator) else {
+                break step;
+            };
+            let err = self.error_norm(&self.w, &step.y1(), h, &error, rtol);
+            if err <= 1.0 {
+                self.h = h * dopri5::step_factor(err);
+                break step;
+            }
+            h *= if err.is_finite() { dopri5::step_factor(err).min(1.0) } else { 0.2 };
+            if h <= 1e-15 {
+                return Err(Failure::StepUnderflow);
+            }
+        };
+        self.accept(&step)?;
+        Ok(step)
+    }
+
+    fn accept(&mut self, a: &Interpolant<2>) -> Result<(), Failure> {
+        let y1 = a.y1();
+        if !(y1[0].is_finite() && y1[1].is_finite()) {
+            return Err(Failure::NonFinite);
+        }
+        self.phi += a.h();
+        self.w = y1;
+        self.dw = a.end_derivative();
+        self.steps += 1;
+        let (u, du) = self.u_du();
+        self.max_h = self.max_h.max(self.metric.plane_hamiltonian(u, du, self.b).abs());
+        Ok(())
+    }
+
+    /// `θ ∈ (0, 1]` where `u` first reaches `target` in the step, by bisection on the dense output.
+    fn crossing(&self, phi0: f64, a: &Interpolant<2>, target: f64) -> f64 {
+        let above = |theta: f64| {
+            let (_, u, _) = PlaneStep::curve(&self.segment, phi0, a, theta);
+            u >= target
+        };
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if above(mid) == above(0.0) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    }
+
+    /// Continues an escaping ray (no longer shown to the caller) from the step `(phi0, a)` just
+    /// taken until `u` crosses zero, and returns the swept azimuth minus π.
+    fn asymptote(&mut self, mut phi0: f64, mut a: Interpolant<2>) -> Result<f64, Failure> {
+        while self.u_du().0 > 0.0 {
+            phi0 = self.phi;
+            a = self.step()?;
+        }
+        let theta = self.crossing(phi0, &a, 0.0);
+        let phi = phi0 + theta * a.h();
+        // Refine against the flat solution's own zero, `φ_ref = φₛ + π − c`: then
+        // `−R sin δ + w(φ_ref + δ) = 0` gives δ from small quantities only.
+        let seg = self.segment;
+        let c = seg.a.atan2(seg.b);
+        if (phi - (seg.phi_start + PI - c)).abs() < 0.5 {
+            let w = a.dense(theta)[0];
+            return Ok(seg.phi_start - c + (w / seg.a.hypot(seg.b)).asin());
+        }
+        Ok(phi - PI)
+    }
+
+    fn world_escape_direction(&self, swept_minus_pi: f64) -> [f64; 3] {
+        let (n, _) = self.segment.chart_direction(swept_minus_pi + PI);
+        scale3(&n, region_sign(self.segment.region))
+    }
+}
+
+/// Traces an in-plane ray to its end, showing every accepted step to `visit`.
+pub fn trace_plane<M: PlaneMetric + ?Sized>(
+    metric: &M,
+    start: PlaneStart,
+    settings: &TraceSettings,
+    mut visit: impl FnMut(&PlaneStep) -> Visit,
+) -> PlaneTrace {
+    let ray = match start {
+        PlaneStart::Radial { region, from, direction } => {
+            return trace_radial(metric, region, from, direction, settings, visit)
+        }
+        PlaneStart::Plane(ray) => ray,
+    };
+    if metric.is_flat() {
+        let sign = region_sign(ray.region);
+        let (dr, dphi) = (-metric.radial_stretch(ray.u) * ray.du, ray.u);
+        let direction = normalize3(&std::array::from_fn(|i| sign * (dr * ray.e1[i] + dphi * ray.e2[i])));
+        let from = scale3(&ray.e1, sign * metric.world_radius(ray.u));
+        let straight = PlaneStep::Straight { region: ray.region, from, direction, length: f64::INFINITY };
+        let fate = if visit(&straight) == Visit::Stop { Fate::Stopped } else { Fate::Escaped { direction } };
+        // A straight line sweeps π − atan2(u, u') from its start to infinity.
+        let swept_minus_pi = -ray.u.atan2(ray.du);
+        return PlaneTrace {
+            fate,
+            steps: 1,
+            max_abs_hamiltonian: metric.plane_hamiltonian(ray.u, ray.du, ray.b).abs(),
+            swept_minus_pi,
+        };
+    }
+    let segment = Segment { e1: ray.e1, e2: ray.e2, region: ray.region, phi_start: 0.0, a: ray.u, b: ray.du };
+    let mut t = Tracer {
+        metric,
+        settings: *settings,
+        inv_b2: 1.0 / (ray.b * ray.b),
+        b: ray.b,
+        segment,
+        phi: 0.0,
+        w: [0.0, 0.0],
+        dw: [0.0, 0.0],
+        h: match settings.integrator {
+            Integrator::Rk4 { step } => step,
+            Integrator::Adaptive { .. } => 0.01,
+        },
+        steps: 0,
+        max_h: metric.plane_hamiltonian(ray.u, ray.du, ray.b).abs(),
+    };
+    t.dw = t.derivative();
+    let start_region = ray.region;
+    let escape_u = metric.u_of_world_radius(settings.escape_radius).unwrap_or(0.0);
+    let mut outcome = |t: &mut Tracer<'_, M>| -> Result<(Fate, f64), Failure> {
+        loop {
+            let phi0 = t.phi;
+            let mut attempt = t.step()?;
+            let (u1, du1) = t.u_du();
+            let throat = metric.throat_u().filter(|&ut| u1 >= ut && du1 > 0.0);
+            if let Some(ut) = throat {
+                // Cut the step at the throat, then carry on in the other region.
+                let theta = t.crossing(phi0, &attempt, ut);
+                t.phi = phi0;
+                t.w = attempt.y0();
+                t.dw = t.derivative();
+                t.steps -= 1;
+                attempt = t.attempt(theta * attempt.h()).0;
+                t.accept(&attempt)?;
+            }
+            let escaping = du1 < 0.0 && u1 <= escape_u;
+            let span = if escaping { t.crossing(phi0, &attempt, escape_u) } else { 1.0 };
+            let step = PlaneStep::Curved { segment: SegmentRef(t.segment), phi0, attempt, span };
+            if visit(&step) == Visit::Stop {
+                return Ok((Fate::Stopped, f64::NAN));
+            }
+            if metric.capture_u().is_some_and(|uc| u1 >= uc) {
+                return Ok((Fate::Captured, f64::NAN));
+            }
+            if escaping {
+                let swept = t.asymptote(phi0, attempt)?;
+                let direction = t.world_escape_direction(swept);
+                let fate = if t.segment.region == start_region {
+                    Fate::Escaped { direction }
+                } else {
+                    Fate::Traversed { direction }
+                };
+                return Ok((fate, swept));
+            }
+            if let Some(ut) = throat {
+                let (_, du) = t.u_du();
+                t.segment = Segment { region: other(t.segment.region), phi_start: t.phi, a: ut, b: -du, ..t.segment };
+                t.w = [0.0, 0.0];
+                t.dw = t.derivative();
+            }
+        }
+    };
+    let (fate, swept_minus_pi) = outcome(&mut t).unwrap_or_else(|f| (Fate::Failed(f), f64::NAN));
+    PlaneTrace { fate, steps: t.steps, max_abs_hamiltonian: t.max_h, swept_minus_pi }
+}
+
+/// A ray with zero impact parameter: straight along the radius, in world coordinates, through a
+/// throat (coming out antipodally, i.e. straight on) or into a horizon.
+fn trace_radial<M: PlaneMetric + ?Sized>(
+    metric: &M,
+    region: Region,
+    from: [f64; 3],
+    direction: [f64; 3],
+    settings: &TraceSettings,
+    mut visit: impl FnMut(&PlaneStep) -> Visit,
+) -> PlaneTrace {
+    let rho = norm3(&from);
+    let inward = dot3(&from, &direction) < 0.0;
+    let mut steps = 0;
+    // Outward rays sweep no azimuth; inward ones flip to the antipode (π) unless they end first.
+    let finish = |fate: Fate, steps: u32| {
+        let swept_minus_pi = match fate {
+            Fate::Escaped { .. } if inward => 0.0,
+            Fate::Escaped { .. } | Fate::Traversed { .. } => -PI,
+            _ => f64::NAN,
+        };
+        PlaneTrace { fate, steps, max_abs_hamiltonian: 0.0, swept_minus_pi }
+    };
+    let mut go = |region: Region, from: [f64; 3], length: f64, steps: &mut u32| {
+        *steps += 1;
+        visit(&PlaneStep::Straight { region, from, direction, length }) == Visit::Stop
+    };
+    if !inward {
+        let stopped = go(region, from, settings.escape_radius - rho, &mut steps);
+        return finish(if stopped { Fate::Stopped } else { Fate::Escaped { direction } }, steps);
+    }
+    if let Some(uc) = metric.capture_u() {
+        let stopped = go(region, from, rho - metric.world_radius(uc), &mut steps);
+        return finish(if stopped { Fate::Stopped } else { Fate::Captured }, steps);
+    }
+    if let Some(ut) = metric.throat_u() {
+        let throat = metric.world_radius(ut);
+        if go(region, from, rho - throat, &mut steps) {
+            return finish(Fate::Stopped, steps);
+        }
+        let exit = scale3(&normalize3(&from), -throat);
+        let stopped = go(other(region), exit, settings.escape_radius - throat, &mut steps);
+        return finish(if stopped { Fate::Stopped } else { Fate::Traversed { direction } }, steps);
+    }
+    // Flat space: straight through the centre and out.
+    let stopped = go(region, from, rho + settings.escape_radius, &mut steps);
+    finish(if stopped { Fate::Stopped } else { Fate::Escaped { direction } }, steps)
+}

@@ -45,11 +45,7 @@ mod tests {
         let f = |_t: f64, y: &[f64; 1]| [y[0]];
         let err = |h: f64| (step(&f, 0.0, &[1.0], &[1.0], h)[0] - h.exp()).abs();
         let ratio = err(0.1) / err(0.05);
-        assert!(
-            (ratio.log2() - 5.0).abs() < 0.3,
-            "observed local order {}",
-            ratio.log2()
-        );
+        assert!((ratio.log2() - 5.0).abs() < 0.3, "observed local order {}", ratio.log2());
     }
 
     #[test]

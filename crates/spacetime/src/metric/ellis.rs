@@ -12,6 +12,7 @@
 //! its direction and neither region is mirrored. The throat is the sphere `|Y| = b₀` of both.
 
 use super::{Metric, Region, WorldPoint};
+use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{normalize3, Covector4, Matrix4, Vector4};
 
 /// Ellis wormhole.
@@ -55,22 +56,12 @@ fn s2_of(x: &Vector4) -> f64 {
 impl Metric for Ellis {
     fn metric(&self, x: &Vector4) -> Matrix4 {
         let w = self.conformal(s2_of(x)).powi(2);
-        [
-            [-1.0, 0.0, 0.0, 0.0],
-            [0.0, w, 0.0, 0.0],
-            [0.0, 0.0, w, 0.0],
-            [0.0, 0.0, 0.0, w],
-        ]
+        [[-1.0, 0.0, 0.0, 0.0], [0.0, w, 0.0, 0.0], [0.0, 0.0, w, 0.0], [0.0, 0.0, 0.0, w]]
     }
 
     fn inverse_metric(&self, x: &Vector4) -> Matrix4 {
         let w = self.conformal(s2_of(x)).powi(-2);
-        [
-            [-1.0, 0.0, 0.0, 0.0],
-            [0.0, w, 0.0, 0.0],
-            [0.0, 0.0, w, 0.0],
-            [0.0, 0.0, 0.0, w],
-        ]
+        [[-1.0, 0.0, 0.0, 0.0], [0.0, w, 0.0, 0.0], [0.0, 0.0, w, 0.0], [0.0, 0.0, 0.0, w]]
     }
 
     /// `∂_a Ω⁻² = 2 b₀² x_a / (s⁴ Ω³)`.
@@ -94,10 +85,7 @@ impl Metric for Ellis {
         let w = 1.0 / (omega * omega);
         let p2 = p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
         let c = -self.throat * self.throat * p2 / (s2 * s2 * omega * omega * omega);
-        (
-            [-p[0], w * p[1], w * p[2], w * p[3]],
-            [0.0, c * x[1], c * x[2], c * x[3]],
-        )
+        ([-p[0], w * p[1], w * p[2], w * p[3]], [0.0, c * x[1], c * x[2], c * x[3]])
     }
 
     fn length_scale(&self) -> f64 {
@@ -138,9 +126,8 @@ impl Metric for Ellis {
         let rho = s * omega;
         let radial = n[0] * dx[1] + n[1] * dx[2] + n[2] * dx[3];
         let l_over_s = self.proper_radial(s) / s;
-        let dy: [f64; 3] = std::array::from_fn(|i| {
-            sign * (l_over_s * radial * n[i] + omega * (dx[i + 1] - n[i] * radial))
-        });
+        let dy: [f64; 3] =
+            std::array::from_fn(|i| sign * (l_over_s * radial * n[i] + omega * (dx[i + 1] - n[i] * radial)));
         WorldPoint {
             region,
             position: [sign * rho * n[0], sign * rho * n[1], sign * rho * n[2]],
@@ -163,6 +150,48 @@ impl Metric for Ellis {
     }
 }
 
+/// In the ray's plane with `u = 1/s`, a conformally flat space is a medium of index `Ω`:
+/// `(u')² + u² = Ω²/b²`, so `u'' = −u + Ω Ω_u / b²` with `Ω_u = b₀² u`. The same equation holds
+/// for `ũ = 1/(b₀² u)` in the lower region. No radial stretch: the chart is isotropic.
+impl PlaneMetric for Ellis {
+    #[inline]
+    fn binet_source(&self, u: f64, inv_b2: f64) -> f64 {
+        let b02 = self.throat * self.throat;
+        0.5 * (1.0 + b02 * u * u) * b02 * u * inv_b2
+    }
+
+    fn slope_squared(&self, u: f64, inv_b2: f64) -> f64 {
+        let omega = 0.5 * (1.0 + self.throat * self.throat * u * u);
+        omega * omega * inv_b2 - u * u
+    }
+
+    fn plane_hamiltonian(&self, u: f64, du: f64, b: f64) -> f64 {
+        let omega = 0.5 * (1.0 + self.throat * self.throat * u * u);
+        b * b / (2.0 * omega * omega) * (du * du - self.slope_squared(u, 1.0 / (b * b)))
+    }
+
+    fn radial_stretch(&self, _u: f64) -> f64 {
+        1.0
+    }
+
+    fn impact_factor(&self, u: f64) -> f64 {
+        self.world_radius(u)
+    }
+
+    /// `ρ = s Ω = (1/u + b₀² u) / 2`.
+    fn world_radius(&self, u: f64) -> f64 {
+        0.5 * (1.0 / u + self.throat * self.throat * u)
+    }
+
+    fn u_of_world_radius(&self, rho: f64) -> Option<f64> {
+        (rho >= self.throat).then(|| 1.0 / self.isotropic_radius(((rho - self.throat) * (rho + self.throat)).sqrt()))
+    }
+
+    fn throat_u(&self) -> Option<f64> {
+        Some(1.0 / self.throat)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -170,12 +199,7 @@ mod tests {
     #[test]
     fn conformance() {
         let m = Ellis::new(1.0);
-        for x in [
-            [0.0, 10.0, 0.0, 0.0],
-            [3.0, 1.0, -0.5, 0.7],
-            [0.0, 0.1, 0.2, 0.3],
-            [0.0, 0.6, 0.5, 0.2],
-        ] {
+        for x in [[0.0, 10.0, 0.0, 0.0], [3.0, 1.0, -0.5, 0.7], [0.0, 0.1, 0.2, 0.3], [0.0, 0.6, 0.5, 0.2]] {
             super::super::conformance::check_metric(&m, &x);
         }
     }
@@ -185,10 +209,7 @@ mod tests {
         let m = Ellis::new(2.0);
         for l in [-50.0, -2.0, -1e-3, 0.0, 0.5, 7.0, 1e4] {
             let s = m.isotropic_radius(l);
-            assert!(
-                (m.proper_radial(s) - l).abs() < 1e-12 * (1.0 + l.abs()),
-                "l = {l}"
-            );
+            assert!((m.proper_radial(s) - l).abs() < 1e-12 * (1.0 + l.abs()), "l = {l}");
             let x = [0.0, s, 0.0, 0.0];
             assert!((m.radius(&x) - l.hypot(2.0)).abs() < 1e-12 * (1.0 + l.abs()));
         }
@@ -206,9 +227,6 @@ mod tests {
                 assert!((w.position[i] - p[i]).abs() < 1e-12);
             }
         }
-        assert!(
-            m.from_world(Region::Upper, [0.5, 0.0, 0.0], 0.0).is_none(),
-            "inside the throat"
-        );
+        assert!(m.from_world(Region::Upper, [0.5, 0.0, 0.0], 0.0).is_none(), "inside the throat");
     }
 }

@@ -43,10 +43,7 @@ impl Kerr {
 
     /// Outer horizon `r₊ = M + √(M² − a²)`.
     pub fn horizon_radius(&self) -> f64 {
-        self.mass
-            + (self.mass * self.mass - self.spin * self.spin)
-                .max(0.0)
-                .sqrt()
+        self.mass + (self.mass * self.mass - self.spin * self.spin).max(0.0).sqrt()
     }
 
     /// Spheroidal radius `r` of a spatial point.
@@ -56,13 +53,7 @@ impl Kerr {
 
     fn point(&self, x: &Vector4) -> KerrSchildPoint {
         let var = |i: usize, v: f64| DualSVec64::<3>::from_re(v).derivative(i);
-        let (_, f, k) = kerr_schild_fields(
-            self.mass,
-            self.spin,
-            var(0, x[1]),
-            var(1, x[2]),
-            var(2, x[3]),
-        );
+        let (_, f, k) = kerr_schild_fields(self.mass, self.spin, var(0, x[1]), var(1, x[2]), var(2, x[3]));
         let grad = |d: &DualSVec64<3>| {
             let g = d.eps.unwrap_generic(nalgebra::Const::<3>, nalgebra::U1);
             [g[0], g[1], g[2]]
@@ -120,12 +111,7 @@ mod tests {
     #[test]
     fn conformance() {
         let m = Kerr::new(1.0, 0.9);
-        for x in [
-            [0.0, 10.0, 0.0, 0.0],
-            [3.0, 1.0, -2.5, 0.7],
-            [0.0, 0.1, 0.2, 2.1],
-            [0.0, 1.5, 0.5, 0.2],
-        ] {
+        for x in [[0.0, 10.0, 0.0, 0.0], [3.0, 1.0, -2.5, 0.7], [0.0, 0.1, 0.2, 2.1], [0.0, 1.5, 0.5, 0.2]] {
             super::super::conformance::check_metric(&m, &x);
         }
     }

@@ -42,16 +42,10 @@ impl KerrSchildPoint {
         let l = self.l_upper();
         let mut d = [[[0.0; 4]; 4]; 4];
         for a in 1..4 {
-            let dl: Vector4 = [
-                0.0,
-                -self.dk[a - 1][0],
-                -self.dk[a - 1][1],
-                -self.dk[a - 1][2],
-            ];
+            let dl: Vector4 = [0.0, -self.dk[a - 1][0], -self.dk[a - 1][1], -self.dk[a - 1][2]];
             for i in 0..4 {
                 for j in 0..4 {
-                    d[a][i][j] =
-                        -self.df[a - 1] * l[i] * l[j] - self.f * (dl[i] * l[j] + l[i] * dl[j]);
+                    d[a][i][j] = -self.df[a - 1] * l[i] * l[j] - self.f * (dl[i] * l[j] + l[i] * dl[j]);
                 }
             }
         }
@@ -65,12 +59,7 @@ impl KerrSchildPoint {
     pub fn geodesic_rhs(&self, p: &Covector4) -> (Vector4, Covector4) {
         let q = -p[0] - (self.k[0] * p[1] + self.k[1] * p[2] + self.k[2] * p[3]);
         let fq = self.f * q;
-        let dx = [
-            -p[0] + fq,
-            p[1] + fq * self.k[0],
-            p[2] + fq * self.k[1],
-            p[3] + fq * self.k[2],
-        ];
+        let dx = [-p[0] + fq, p[1] + fq * self.k[0], p[2] + fq * self.k[1], p[3] + fq * self.k[2]];
         let mut dp = [0.0; 4];
         for i in 0..3 {
             let dq = -(self.dk[i][0] * p[1] + self.dk[i][1] * p[2] + self.dk[i][2] * p[3]);

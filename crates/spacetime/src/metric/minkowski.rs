@@ -1,6 +1,7 @@
 //! Flat spacetime in Cartesian coordinates: `g = η`. Rays are straight lines.
 
 use super::Metric;
+use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{Covector4, Matrix4, Vector4, ETA};
 
 /// Minkowski spacetime.
@@ -26,6 +27,41 @@ impl Metric for Minkowski {
 
     fn length_scale(&self) -> f64 {
         1.0
+    }
+}
+
+/// Straight lines: `u'' = −u` exactly.
+impl PlaneMetric for Minkowski {
+    fn binet_source(&self, _u: f64, _inv_b2: f64) -> f64 {
+        0.0
+    }
+
+    fn slope_squared(&self, u: f64, inv_b2: f64) -> f64 {
+        inv_b2 - u * u
+    }
+
+    fn plane_hamiltonian(&self, u: f64, du: f64, b: f64) -> f64 {
+        0.5 * b * b * (du * du - self.slope_squared(u, 1.0 / (b * b)))
+    }
+
+    fn radial_stretch(&self, _u: f64) -> f64 {
+        1.0
+    }
+
+    fn impact_factor(&self, u: f64) -> f64 {
+        1.0 / u
+    }
+
+    fn world_radius(&self, u: f64) -> f64 {
+        1.0 / u
+    }
+
+    fn u_of_world_radius(&self, rho: f64) -> Option<f64> {
+        (rho > 0.0).then(|| 1.0 / rho)
+    }
+
+    fn is_flat(&self) -> bool {
+        true
     }
 }
 

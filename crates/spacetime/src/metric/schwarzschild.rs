@@ -6,6 +6,7 @@
 
 use super::kerr_schild::KerrSchildPoint;
 use super::Metric;
+use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{norm3, spatial, Covector4, Matrix4, Vector4};
 
 /// Schwarzschild spacetime.
@@ -31,9 +32,8 @@ impl Schwarzschild {
         let k = [x[1] * inv_r, x[2] * inv_r, x[3] * inv_r];
         let f = 2.0 * self.mass * inv_r;
         let df = [-f * k[0] * inv_r, -f * k[1] * inv_r, -f * k[2] * inv_r];
-        let dk = std::array::from_fn(|i| {
-            std::array::from_fn(|j| (if i == j { 1.0 } else { 0.0 } - k[i] * k[j]) * inv_r)
-        });
+        let dk =
+            std::array::from_fn(|i| std::array::from_fn(|j| (if i == j { 1.0 } else { 0.0 } - k[i] * k[j]) * inv_r));
         KerrSchildPoint { f, k, df, dk }
     }
 }
@@ -70,6 +70,45 @@ impl Metric for Schwarzschild {
     }
 }
 
+/// In the ray's plane with `u = 1/r`: `(u')² = 1/b² − u² + 2Mu³`, so `u'' = −u + 3Mu²`
+/// (the relativistic Binet equation). A static observer's frame stretches the radial direction
+/// by `1/√(1 − 2M/r)`.
+impl PlaneMetric for Schwarzschild {
+    #[inline]
+    fn binet_source(&self, u: f64, _inv_b2: f64) -> f64 {
+        3.0 * self.mass * u * u
+    }
+
+    fn slope_squared(&self, u: f64, inv_b2: f64) -> f64 {
+        inv_b2 - u * u + 2.0 * self.mass * u * u * u
+    }
+
+    fn plane_hamiltonian(&self, u: f64, du: f64, b: f64) -> f64 {
+        let lapse2 = 1.0 - 2.0 * self.mass * u;
+        b * b / (2.0 * lapse2) * (du * du - self.slope_squared(u, 1.0 / (b * b)))
+    }
+
+    fn radial_stretch(&self, u: f64) -> f64 {
+        1.0 / (1.0 - 2.0 * self.mass * u).sqrt()
+    }
+
+    fn impact_factor(&self, u: f64) -> f64 {
+        1.0 / (u * (1.0 - 2.0 * self.mass * u).sqrt())
+    }
+
+    fn world_radius(&self, u: f64) -> f64 {
+        1.0 / u
+    }
+
+    fn u_of_world_radius(&self, rho: f64) -> Option<f64> {
+        (rho > 0.0).then(|| 1.0 / rho)
+    }
+
+    fn capture_u(&self) -> Option<f64> {
+        (self.mass > 0.0).then(|| 1.0 / self.horizon_radius())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -77,12 +116,7 @@ mod tests {
     #[test]
     fn conformance() {
         let m = Schwarzschild::new(1.0);
-        for x in [
-            [0.0, 10.0, 0.0, 0.0],
-            [3.0, 1.0, -2.5, 0.7],
-            [0.0, 0.0, 0.0, 2.1],
-            [0.0, 1.5, 0.5, 0.2],
-        ] {
+        for x in [[0.0, 10.0, 0.0, 0.0], [3.0, 1.0, -2.5, 0.7], [0.0, 0.0, 0.0, 2.1], [0.0, 1.5, 0.5, 0.2]] {
             super::super::conformance::check_metric(&m, &x);
         }
     }

@@ -58,20 +58,13 @@ pub struct UserMetric<F>(pub F);
 impl<F: MetricFunction> UserMetric<F> {
     /// `g_{μν}` and `∂_α g_{μν}` in one dual-number evaluation.
     fn metric_with_derivatives(&self, x: &Vector4) -> (Matrix4, [Matrix4; 4]) {
-        let xd: [DualSVec64<4>; 4] =
-            std::array::from_fn(|i| DualSVec64::from_re(x[i]).derivative(i));
+        let xd: [DualSVec64<4>; 4] = std::array::from_fn(|i| DualSVec64::from_re(x[i]).derivative(i));
         let g = self.0.metric(xd);
         let value = std::array::from_fn(|i| std::array::from_fn(|j| g[i][j].re));
         let grads: [[nalgebra::SVector<f64, 4>; 4]; 4] = std::array::from_fn(|i| {
-            std::array::from_fn(|j| {
-                g[i][j]
-                    .eps
-                    .unwrap_generic(nalgebra::Const::<4>, nalgebra::U1)
-            })
+            std::array::from_fn(|j| g[i][j].eps.unwrap_generic(nalgebra::Const::<4>, nalgebra::U1))
         });
-        let d = std::array::from_fn(|a| {
-            std::array::from_fn(|i| std::array::from_fn(|j| grads[i][j][a]))
-        });
+        let d = std::array::from_fn(|a| std::array::from_fn(|i| std::array::from_fn(|j| grads[i][j][a])));
         (value, d)
     }
 }
@@ -168,11 +161,7 @@ pub(crate) mod tests {
     fn automatic_derivatives_reproduce_hand_written_schwarzschild() {
         let user = UserMetric(UserSchwarzschild { mass: 1.2 });
         let hand = Schwarzschild::new(1.2);
-        for x in [
-            [0.0, 7.0, 1.0, -2.0],
-            [1.0, -2.0, 0.5, 1.5],
-            [0.0, 0.0, 0.0, 30.0],
-        ] {
+        for x in [[0.0, 7.0, 1.0, -2.0], [1.0, -2.0, 0.5, 1.5], [0.0, 0.0, 0.0, 30.0]] {
             let (a, da) = user.inverse_metric_derivatives(&x);
             let (b, db) = hand.inverse_metric_derivatives(&x);
             for i in 0..4 {

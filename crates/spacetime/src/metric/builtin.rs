@@ -1,0 +1,92 @@
+//! The closed set of built-in spacetimes, for scene files and the command line, validated on
+//! construction.
+
+use super::{Ellis, Kerr, Minkowski, Schwarzschild};
+
+/// A built-in spacetime.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Spacetime {
+    Minkowski(Minkowski),
+    Schwarzschild(Schwarzschild),
+    Kerr(Kerr),
+    Ellis(Ellis),
+}
+
+/// A parameter outside the spacetime's domain.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParameterError(pub String);
+
+impl std::fmt::Display for ParameterError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ParameterError {}
+
+fn finite_non_negative(name: &str, v: f64) -> Result<f64, ParameterError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(ParameterError(format!("{name} must be a finite number ≥ 0, got {v}")))
+    }
+}
+
+impl Spacetime {
+    pub fn schwarzschild(mass: f64) -> Result<Self, ParameterError> {
+        Ok(Spacetime::Schwarzschild(Schwarzschild::new(finite_non_negative("mass", mass)?)))
+    }
+
+    /// Kerr with `|spin| ≤ mass`; spin along +z, positive for counter-clockwise rotation seen
+    /// from +z.
+    pub fn kerr(mass: f64, spin: f64) -> Result<Self, ParameterError> {
+        let mass = finite_non_negative("mass", mass)?;
+        if !spin.is_finite() || spin.abs() > mass {
+            return Err(ParameterError(format!("spin must satisfy |spin| ≤ mass = {mass}, got {spin}")));
+        }
+        Ok(Spacetime::Kerr(Kerr::new(mass, spin)))
+    }
+
+    pub fn ellis(throat: f64) -> Result<Self, ParameterError> {
+        if !(throat.is_finite() && throat > 0.0) {
+            return Err(ParameterError(format!("throat radius must be a finite number > 0, got {throat}")));
+        }
+        Ok(Spacetime::Ellis(Ellis::new(throat)))
+    }
+
+    /// Stable lower-case name, as in scene files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Spacetime::Minkowski(_) => "minkowski",
+            Spacetime::Schwarzschild(_) => "schwarzschild",
+            Spacetime::Kerr(_) => "kerr",
+            Spacetime::Ellis(_) => "ellis",
+        }
+    }
+
+    /// The curvature length scale (mass or throat radius; 1 for flat space).
+    pub fn length_scale(&self) -> f64 {
+        use super::Metric;
+        match self {
+            Spacetime::Minkowski(m) => m.length_scale(),
+            Spacetime::Schwarzschild(m) => m.length_scale(),
+            Spacetime::Kerr(m) => m.length_scale(),
+            Spacetime::Ellis(m) => m.length_scale(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parameters_are_validated() {
+        assert!(Spacetime::schwarzschild(-1.0).is_err());
+        assert!(Spacetime::schwarzschild(f64::NAN).is_err());
+        assert!(Spacetime::kerr(1.0, 1.0).is_ok());
+        assert!(Spacetime::kerr(1.0, -1.01).is_err());
+        assert!(Spacetime::ellis(0.0).is_err());
+        assert_eq!(Spacetime::ellis(2.0).unwrap().name(), "ellis");
+    }
+}

@@ -1,0 +1,118 @@
+//! The integrators against exact results (physics notes, "Analytic results to test against").
+//! Exact values come from quadrature of the bending integrals (`spacetime::analytic`).
+
+use spacetime::analytic;
+use spacetime::scattering::scatter;
+use spacetime::{Fate, Integrator, Spacetime};
+
+const ADAPTIVE: Integrator = Integrator::Adaptive { rtol: 1e-10 };
+
+#[test]
+fn schwarzschild_bending_matches_the_exact_integral() {
+    let hole = Spacetime::schwarzschild(1.0).unwrap();
+    for b in [5.25, 5.5, 6.0, 8.0, 12.0, 30.0, 100.0, 1e3, 1e4, 1e5] {
+        let s = scatter(&hole, b, 0.0, ADAPTIVE);
+        assert!(matches!(s.fate, Fate::Escaped { .. }), "b = {b}: {:?}", s.fate);
+        let exact = analytic::schwarzschild_deflection(1.0, b);
+        let rel = (s.deflection_rad - exact).abs() / exact;
+        assert!(rel < 1e-7, "b = {b} M: {} vs exact {exact} (relative error {rel:e})", s.deflection_rad);
+        assert!(s.max_abs_hamiltonian < 1e-9, "b = {b}: |H| = {:e}", s.max_abs_hamiltonian);
+    }
+}
+
+#[test]
+fn schwarzschild_bending_scales_with_mass() {
+    let exact = analytic::schwarzschild_deflection(2.5, 40.0);
+    let s = scatter(&Spacetime::schwarzschild(2.5).unwrap(), 40.0, 0.3, ADAPTIVE);
+    assert!(((s.deflection_rad - exact) / exact).abs() < 1e-7);
+}
+
+#[test]
+fn schwarzschild_captures_below_the_critical_impact_parameter() {
+    let hole = Spacetime::schwarzschild(1.0).unwrap();
+    let critical = analytic::schwarzschild_critical_impact(1.0);
+    for b in [0.0, 0.5, 3.0, 5.0, critical * (1.0 - 1e-6)] {
+        assert_eq!(scatter(&hole, b, 0.0, ADAPTIVE).fate, Fate::Captured, "b = {b}");
+    }
+    assert!(matches!(scatter(&hole, critical * (1.0 + 1e-6), 0.0, ADAPTIVE).fate, Fate::Escaped { .. }));
+}
+
+#[test]
+fn ellis_bending_matches_the_exact_integral() {
+    let wormhole = Spacetime::ellis(1.0).unwrap();
+    for b in [1.01, 1.1, 1.5, 2.0, 5.0, 10.0, 100.0, 1e3, 1e4] {
+        let s = scatter(&wormhole, b, 0.0, ADAPTIVE);
+        assert!(matches!(s.fate, Fate::Escaped { .. }), "b = {b}: {:?}", s.fate);
+        let exact = analytic::ellis_deflection(1.0, b);
+        let rel = (s.deflection_rad - exact).abs() / exact;
+        assert!(rel < 1e-7, "b = {b} b₀: {} vs exact {exact} (relative error {rel:e})", s.deflection_rad);
+    }
+}
+
+#[test]
+fn ellis_rays_inside_the_throat_traverse_and_sweep_the_exact_azimuth() {
+    let wormhole = Spacetime::ellis(2.0).unwrap();
+    for b in [0.02, 0.2, 1.0, 1.6, 1.98] {
+        let s = scatter(&wormhole, b, 0.7, ADAPTIVE);
+        assert!(matches!(s.fate, Fate::Traversed { .. }), "b = {b}: {:?}", s.fate);
+        let swept = s.deflection_rad + std::f64::consts::PI;
+        let exact = analytic::ellis_deflection(2.0, b) + std::f64::consts::PI;
+        assert!(((swept - exact) / exact).abs() < 1e-7, "b = {b}: swept {swept} vs {exact}");
+    }
+    assert!(matches!(scatter(&wormhole, 0.0, 0.0, ADAPTIVE).fate, Fate::Traversed { .. }));
+}
+
+#[test]
+fn minkowski_rays_are_not_bent() {
+    let flat = Spacetime::Minkowski(spacetime::Minkowski);
+    for b in [0.1, 1.0, 1e3] {
+        let s = scatter(&flat, b, 0.0, ADAPTIVE);
+        assert!(matches!(s.fate, Fate::Escaped { .. }));
+        assert!(s.deflection_rad.abs() < 1e-15, "b = {b}: {}", s.deflection_rad);
+    }
+}
+
+/// Bisects the capture threshold of equatorial rays on one side of a Kerr hole.
+fn kerr_critical_impact(spin: f64, side: f64) -> f64 {
+    let hole = Spacetime::kerr(1.0, spin).unwrap();
+    let captured = |b: f64| scatter(&hole, side * b, 0.0, ADAPTIVE).fate == Fate::Captured;
+    let (mut lo, mut hi) = (1.0, 10.0);
+    assert!(captured(lo) && !captured(hi));
+    while hi - lo > 1e-9 * hi {
+        let mid = 0.5 * (lo + hi);
+        if captured(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    side * 0.5 * (lo + hi)
+}
+
+#[test]
+fn kerr_shadow_edges_match_bardeens_critical_curve() {
+    for spin in [0.5, 0.9] {
+        let (pro, retro) = analytic::kerr_equatorial_critical_impacts(1.0, spin);
+        let found_pro = kerr_critical_impact(spin, 1.0);
+        let found_retro = kerr_critical_impact(spin, -1.0);
+        assert!(((found_pro - pro) / pro).abs() < 1e-6, "a = {spin}: prograde {found_pro} vs {pro}");
+        assert!(((found_retro - retro) / retro).abs() < 1e-6, "a = {spin}: retrograde {found_retro} vs {retro}");
+    }
+}
+
+#[test]
+fn kerr_with_zero_spin_bends_like_schwarzschild() {
+    let exact = analytic::schwarzschild_deflection(1.0, 20.0);
+    let s = scatter(&Spacetime::kerr(1.0, 0.0).unwrap(), 20.0, 0.4, ADAPTIVE);
+    assert!(((s.deflection_rad - exact) / exact).abs() < 1e-6, "{} vs {exact}", s.deflection_rad);
+}
+
+#[test]
+fn rk4_is_available_and_converges() {
+    let hole = Spacetime::schwarzschild(1.0).unwrap();
+    let exact = analytic::schwarzschild_deflection(1.0, 10.0);
+    let coarse = scatter(&hole, 10.0, 0.0, Integrator::Rk4 { step: 0.05 });
+    let fine = scatter(&hole, 10.0, 0.0, Integrator::Rk4 { step: 0.025 });
+    let (ec, ef) = ((coarse.deflection_rad - exact).abs(), (fine.deflection_rad - exact).abs());
+    assert!(ef < 1e-5 && ef < ec / 8.0, "RK4 errors {ec:e} → {ef:e}");
+}
