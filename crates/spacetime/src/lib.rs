@@ -9,6 +9,7 @@
 //! photon it describes travels the other way. Nothing here knows about rendering.
 
 pub mod analytic;
+pub mod fan;
 pub mod geodesic;
 pub mod metric;
 pub mod observer;

@@ -45,7 +45,7 @@ impl Tetrad {
             return Err(FrameError::Degenerate);
         }
         let norm2 = quadratic(&g, &u, &u);
-        if !(norm2 < 0.0) || u[0] <= 0.0 && norm2.is_nan() {
+        if !norm2.is_finite() || norm2 >= 0.0 {
             return Err(FrameError::NotTimelike);
         }
         let u = u.map(|c| c / (-norm2).sqrt());
@@ -60,7 +60,7 @@ impl Tetrad {
         });
         let s = nalgebra::Matrix3::from_fn(|i, j| quadratic(&g, &axes[i], &axes[j]));
         let eig = nalgebra::SymmetricEigen::new(s);
-        if eig.eigenvalues.iter().any(|&l| !(l > 0.0)) {
+        if eig.eigenvalues.iter().any(|&l| l.is_nan() || l <= 0.0) {
             return Err(FrameError::Degenerate);
         }
         let inv_sqrt = eig.eigenvectors
@@ -94,7 +94,7 @@ impl Tetrad {
     /// this frame: a pure Lorentz boost, so aberration and Doppler shift follow.
     pub fn boosted(&self, v: [f64; 3]) -> Result<Tetrad, FrameError> {
         let v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-        if !(v2 < 1.0) {
+        if v2.is_nan() || v2 >= 1.0 {
             return Err(FrameError::NotTimelike);
         }
         let gamma = 1.0 / (1.0 - v2).sqrt();

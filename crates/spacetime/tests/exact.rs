@@ -1,6 +1,8 @@
 //! The integrators against exact results (physics notes, "Analytic results to test against").
 //! Exact values come from quadrature of the bending integrals (`spacetime::analytic`).
 
+#![allow(clippy::unwrap_used)] // Test helpers may panic: a panic is a failed test.
+
 use spacetime::analytic;
 use spacetime::scattering::scatter;
 use spacetime::{Fate, Integrator, Spacetime};

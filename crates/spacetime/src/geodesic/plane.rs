@@ -5,7 +5,10 @@
 //! parameter and `u = 1/s` (s the chart radius) as unknown, in Binet form `u'' = −u + G(u)`. The
 //! flat part is solved exactly, `u₀(φ) = A cos(φ − φₛ) + B sin(φ − φₛ)`, and only the deviation
 //! `w = u − u₀` is integrated: weak-field bending keeps its full relative precision, straight
-//! rays cost nothing, and there is no pole anywhere — the plane is chosen per ray.
+//! rays cost nothing, and there is no pole anywhere — the plane is chosen per ray. The split
+//! costs a sine and cosine per stage, so it is used only for rays that pass far from the centre
+//! (`b > 64` length scales), where the bending is small and its precision matters; closer rays
+//! integrate `u` itself.
 //!
 //! A wormhole's lower region uses `ũ = 1/(b₀² u)`, which obeys the same equation (the isometry
 //! `s ↦ b₀²/s`); the tracer switches at the throat.
@@ -132,13 +135,35 @@ struct Segment {
     e2: [f64; 3],
     region: Region,
     phi_start: f64,
+    /// Whether the flat solution is split off (`a`, `b` are then its constants, else zero).
+    split: bool,
     a: f64,
     b: f64,
 }
 
 impl Segment {
+    /// A segment starting at `phi` with `(u, u')`, and the deviation `w` it starts from.
+    fn starting(
+        e1: [f64; 3],
+        e2: [f64; 3],
+        region: Region,
+        phi: f64,
+        u: f64,
+        du: f64,
+        split: bool,
+    ) -> (Segment, [f64; 2]) {
+        if split {
+            (Segment { e1, e2, region, phi_start: phi, split, a: u, b: du }, [0.0, 0.0])
+        } else {
+            (Segment { e1, e2, region, phi_start: phi, split, a: 0.0, b: 0.0 }, [u, du])
+        }
+    }
+
     #[inline]
     fn flat(&self, phi: f64) -> (f64, f64) {
+        if !self.split {
+            return (0.0, 0.0);
+        }
         let (s, c) = (phi - self.phi_start).sin_cos();
         (self.a * c + self.b * s, -self.a * s + self.b * c)
     }
@@ -153,6 +178,9 @@ impl Segment {
 
 /// One accepted step of an in-plane ray.
 #[derive(Clone, Copy, Debug)]
+// Steps are handed to the visitor by reference and never stored, so the size difference
+// between variants costs nothing and boxing would cost an allocation per step.
+#[allow(clippy::large_enum_variant)]
 pub enum PlaneStep {
     /// `span ≤ 1` is the fraction of the integrator step that belongs to this step (a step is
     /// cut where it leaves the escape sphere).
@@ -266,13 +294,17 @@ impl<'m, M: PlaneMetric + ?Sized> Tracer<'m, M> {
     /// Error relative to the deviation from flat space (with a floor far below the flat
     /// solution's size), so weak bending is resolved to full relative precision.
     fn error_norm(&self, y0: &[f64; 2], y1: &[f64; 2], h: f64, error: &[f64; 2], rtol: f64) -> f64 {
-        let amp = |phi: f64, w: &[f64; 2]| {
-            let (u0, du0) = self.segment.flat(phi);
-            (u0 + w[0]).hypot(du0 + w[1])
-        };
         let dev = (y0[0].abs() + y0[1].abs()).max(y1[0].abs() + y1[1].abs());
-        let floor = 1e-12 * amp(self.phi, y0).max(amp(self.phi + h, y1));
-        error[0].hypot(error[1]) / (rtol * dev.max(floor))
+        let floor = if self.segment.split {
+            let amp = |phi: f64, w: &[f64; 2]| {
+                let (u0, du0) = self.segment.flat(phi);
+                (u0 + w[0]).hypot(du0 + w[1])
+            };
+            1e-12 * amp(self.phi, y0).max(amp(self.phi + h, y1))
+        } else {
+            0.0
+        };
+        (error[0] * error[0] + error[1] * error[1]).sqrt() / (rtol * dev.max(floor))
     }
 
     fn attempt(&self, h: f64) -> (Interpolant<2>, Option<[f64; 2]>) {
@@ -319,22 +351,36 @@ impl<'m, M: PlaneMetric + ?Sized> Tracer<'m, M> {
         Ok(())
     }
 
-    /// `θ ∈ (0, 1]` where `u` first reaches `target` in the step, by bisection on the dense output.
+    /// `θ ∈ [0, 1]` where `u` reaches `target` in the step (the caller knows it is crossed):
+    /// Newton's method on the dense output, whose `u'` is the derivative, kept inside a
+    /// shrinking bracket so it cannot wander off.
     fn crossing(&self, phi0: f64, a: &Interpolant<2>, target: f64) -> f64 {
-        let above = |theta: f64| {
-            let (_, u, _) = PlaneStep::curve(&self.segment, phi0, a, theta);
-            u >= target
+        let at = |theta: f64| {
+            let (_, u, du) = PlaneStep::curve(&self.segment, phi0, a, theta);
+            (u - target, du * a.h())
         };
+        let (f0, _) = at(0.0);
+        let (f1, _) = at(1.0);
         let (mut lo, mut hi) = (0.0, 1.0);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if above(mid) == above(0.0) {
-                lo = mid;
-            } else {
-                hi = mid;
+        let mut theta = if f0 != f1 { (f0 / (f0 - f1)).clamp(0.0, 1.0) } else { 0.5 };
+        for _ in 0..50 {
+            let (f, df) = at(theta);
+            if f == 0.0 {
+                return theta;
             }
+            if (f > 0.0) == (f0 > 0.0) {
+                lo = theta;
+            } else {
+                hi = theta;
+            }
+            let newton = theta - f / df;
+            let next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+            if (next - theta).abs() <= 1e-15 {
+                return next;
+            }
+            theta = next;
         }
-        hi
+        theta
     }
 
     /// Continues an escaping ray (no longer shown to the caller) from the step `(phi0, a)` just
@@ -350,7 +396,7 @@ impl<'m, M: PlaneMetric + ?Sized> Tracer<'m, M> {
         // `−R sin δ + w(φ_ref + δ) = 0` gives δ from small quantities only.
         let seg = self.segment;
         let c = seg.a.atan2(seg.b);
-        if (phi - (seg.phi_start + PI - c)).abs() < 0.5 {
+        if seg.split && (phi - (seg.phi_start + PI - c)).abs() < 0.5 {
             let w = a.dense(theta)[0];
             return Ok(seg.phi_start - c + (w / seg.a.hypot(seg.b)).asin());
         }
@@ -392,7 +438,8 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
             swept_minus_pi,
         };
     }
-    let segment = Segment { e1: ray.e1, e2: ray.e2, region: ray.region, phi_start: 0.0, a: ray.u, b: ray.du };
+    let split = ray.b > 64.0 * metric.length_scale();
+    let (segment, w) = Segment::starting(ray.e1, ray.e2, ray.region, 0.0, ray.u, ray.du, split);
     let mut t = Tracer {
         metric,
         settings: *settings,
@@ -400,11 +447,11 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
         b: ray.b,
         segment,
         phi: 0.0,
-        w: [0.0, 0.0],
+        w,
         dw: [0.0, 0.0],
         h: match settings.integrator {
             Integrator::Rk4 { step } => step,
-            Integrator::Adaptive { .. } => 0.01,
+            Integrator::Adaptive { .. } => 0.2,
         },
         steps: 0,
         max_h: metric.plane_hamiltonian(ray.u, ray.du, ray.b).abs(),
@@ -449,8 +496,8 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
             }
             if let Some(ut) = throat {
                 let (_, du) = t.u_du();
-                t.segment = Segment { region: other(t.segment.region), phi_start: t.phi, a: ut, b: -du, ..t.segment };
-                t.w = [0.0, 0.0];
+                let seg = t.segment;
+                (t.segment, t.w) = Segment::starting(seg.e1, seg.e2, other(seg.region), t.phi, ut, -du, seg.split);
                 t.dw = t.derivative();
             }
         }

@@ -70,9 +70,9 @@ impl Metric for Ellis {
         let omega = self.conformal(s2);
         let c = 2.0 * self.throat * self.throat / (s2 * s2 * omega.powi(3));
         let mut d = [[[0.0; 4]; 4]; 4];
-        for a in 1..4 {
-            for i in 1..4 {
-                d[a][i][i] = c * x[a];
+        for (da, xa) in d.iter_mut().zip(x).skip(1) {
+            for (i, row) in da.iter_mut().enumerate().skip(1) {
+                row[i] = c * xa;
             }
         }
         (self.inverse_metric(x), d)
@@ -135,9 +135,9 @@ impl Metric for Ellis {
         }
     }
 
-    fn from_world(&self, region: Region, p: [f64; 3], t: f64) -> Option<Vector4> {
+    fn world_to_chart(&self, region: Region, p: [f64; 3], t: f64) -> Option<Vector4> {
         let rho = crate::tensor::norm3(&p);
-        if !(rho >= self.throat) || !rho.is_finite() {
+        if !rho.is_finite() || rho < self.throat {
             return None;
         }
         let l_abs = ((rho - self.throat) * (rho + self.throat)).sqrt();
@@ -220,13 +220,13 @@ mod tests {
         let m = Ellis::new(1.5);
         for region in [Region::Upper, Region::Lower] {
             let p = [3.0, -1.0, 2.0];
-            let x = m.from_world(region, p, 0.0).unwrap();
+            let x = m.world_to_chart(region, p, 0.0).unwrap();
             let w = m.to_world(&x, &[0.0, 1.0, 0.0, 0.0]);
             assert_eq!(w.region, region);
             for i in 0..3 {
                 assert!((w.position[i] - p[i]).abs() < 1e-12);
             }
         }
-        assert!(m.from_world(Region::Upper, [0.5, 0.0, 0.0], 0.0).is_none(), "inside the throat");
+        assert!(m.world_to_chart(Region::Upper, [0.5, 0.0, 0.0], 0.0).is_none(), "inside the throat");
     }
 }

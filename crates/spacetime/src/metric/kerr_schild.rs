@@ -41,11 +41,11 @@ impl KerrSchildPoint {
     pub fn inverse_metric_derivatives(&self) -> [Matrix4; 4] {
         let l = self.l_upper();
         let mut d = [[[0.0; 4]; 4]; 4];
-        for a in 1..4 {
-            let dl: Vector4 = [0.0, -self.dk[a - 1][0], -self.dk[a - 1][1], -self.dk[a - 1][2]];
-            for i in 0..4 {
-                for j in 0..4 {
-                    d[a][i][j] = -self.df[a - 1] * l[i] * l[j] - self.f * (dl[i] * l[j] + l[i] * dl[j]);
+        for ((da, dk), df) in d.iter_mut().skip(1).zip(&self.dk).zip(&self.df) {
+            let dl: Vector4 = [0.0, -dk[0], -dk[1], -dk[2]];
+            for (i, row) in da.iter_mut().enumerate() {
+                for (j, v) in row.iter_mut().enumerate() {
+                    *v = -df * l[i] * l[j] - self.f * (dl[i] * l[j] + l[i] * dl[j]);
                 }
             }
         }

@@ -106,7 +106,7 @@ pub trait Metric: Send + Sync {
 
     /// Inverse of [`Metric::to_world`] for positions: the chart point at world position `p` of
     /// `region` at coordinate time `t`; `None` where the chart does not reach (inside a throat).
-    fn from_world(&self, region: Region, p: [f64; 3], t: f64) -> Option<Vector4> {
+    fn world_to_chart(&self, region: Region, p: [f64; 3], t: f64) -> Option<Vector4> {
         (region == Region::Upper).then_some([t, p[0], p[1], p[2]])
     }
 

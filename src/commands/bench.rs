@@ -1,0 +1,120 @@
+//! `nullpath bench WORKLOAD`: throughput on the standard workloads, on one core and on all.
+
+use clap::{Parser, ValueEnum};
+use rayon::prelude::*;
+use spacetime::fan::{trace_hamiltonian, trace_in_plane, Fan, FanRay};
+use spacetime::{Integrator, Schwarzschild, TraceSettings};
+use std::time::Instant;
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Workload {
+    /// 512² camera fan at r = 30 M, 40° field of view, Schwarzschild, adaptive 1e-8.
+    Geodesics,
+}
+
+#[derive(Parser, Debug)]
+pub struct Args {
+    #[arg(value_enum)]
+    workload: Workload,
+    /// Fan size (rays per side).
+    #[arg(long, default_value_t = 512)]
+    size: u32,
+    /// Repetitions; the fastest is reported.
+    #[arg(long, default_value_t = 3)]
+    repeat: u32,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Throughput of one configuration.
+struct Measurement {
+    method: &'static str,
+    threads: usize,
+    rays: u64,
+    steps: u64,
+    seconds: f64,
+}
+
+impl Measurement {
+    fn rays_per_second(&self) -> f64 {
+        self.rays as f64 / self.seconds
+    }
+
+    fn steps_per_second(&self) -> f64 {
+        self.steps as f64 / self.seconds
+    }
+}
+
+fn measure(
+    method: &'static str,
+    threads: usize,
+    rays: &[u64],
+    repeat: u32,
+    trace: &(dyn Fn(u64) -> FanRay + Sync),
+) -> Result<Measurement, String> {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| e.to_string())?;
+    let mut best = f64::INFINITY;
+    let mut steps = 0;
+    for _ in 0..repeat.max(1) {
+        let start = Instant::now();
+        steps = pool.install(|| rays.par_iter().map(|&i| u64::from(trace(i).steps)).sum::<u64>());
+        best = best.min(start.elapsed().as_secs_f64());
+    }
+    Ok(Measurement { method, threads, rays: rays.len() as u64, steps, seconds: best })
+}
+
+pub fn run(args: &Args) -> Result<(), String> {
+    if args.size == 0 || args.size > 8192 {
+        return Err(format!("--size {}: must be between 1 and 8192", args.size));
+    }
+    let Workload::Geodesics = args.workload;
+    let hole = Schwarzschild::new(1.0);
+    let fan = Fan { size: args.size, ..Fan::standard(1.0) };
+    let settings = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-8 }, ..TraceSettings::default() };
+    let all: Vec<u64> = (0..fan.rays()).collect();
+    // The 4-D tracer is measured on every 4th ray of every 4th row, to keep the run short.
+    let size = u64::from(fan.size);
+    let sparse: Vec<u64> = all.iter().copied().filter(|i| (i % size) % 4 == 0 && (i / size) % 4 == 0).collect();
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let plane = |i: u64| trace_in_plane(&hole, &fan, i, &settings);
+    let full = |i: u64| trace_hamiltonian(&hole, &fan, i, &settings);
+    let mut results = Vec::new();
+    for threads in [1, cores] {
+        results.push(measure("in-plane", threads, &all, args.repeat, &plane)?);
+        results.push(measure("4-D Hamiltonian", threads, &sparse, args.repeat, &full)?);
+    }
+    if args.json {
+        let rows: Vec<_> = results
+            .iter()
+            .map(|m| {
+                serde_json::json!({
+                    "method": m.method, "threads": m.threads, "rays": m.rays, "steps": m.steps,
+                    "seconds": m.seconds, "rays_per_second": m.rays_per_second(), "steps_per_second": m.steps_per_second(),
+                })
+            })
+            .collect();
+        println!("{}", serde_json::json!({ "workload": "geodesics", "fan": fan.size, "results": rows }));
+    } else {
+        println!(
+            "geodesics: {0}×{0} fan, camera at r = 30 M, 40° field of view, Schwarzschild, adaptive rtol 1e-8",
+            fan.size
+        );
+        println!(
+            "{:<16} {:>7} {:>9} {:>10} {:>12} {:>14}",
+            "method", "threads", "rays", "seconds", "rays/s", "steps/s"
+        );
+        for m in &results {
+            println!(
+                "{:<16} {:>7} {:>9} {:>10.4} {:>12.0} {:>14.0}",
+                m.method,
+                m.threads,
+                m.rays,
+                m.seconds,
+                m.rays_per_second(),
+                m.steps_per_second()
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,5 @@
+//! One module per subcommand; each exposes `Args` (clap) and `run`, returning a user-facing
+//! error message on failure.
+
+pub mod bench;
+pub mod geodesic;
