@@ -24,13 +24,13 @@ pub struct Args {
     #[arg(long)]
     spacetime: SpacetimeKind,
     /// Mass M (Schwarzschild, Kerr).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     mass: f64,
     /// Spin a, |a| ≤ M (Kerr); positive b is then the prograde side.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     spin: f64,
     /// Throat radius b₀ (Ellis).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     throat: f64,
     /// Impact parameter b, in the same units as M or b₀.
     #[arg(long, allow_hyphen_values = true)]
@@ -42,11 +42,11 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = IntegratorKind::Adaptive)]
     integrator: IntegratorKind,
     /// Relative tolerance of the adaptive integrator.
-    #[arg(long, default_value_t = 1e-10)]
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     rtol: f64,
     /// Step of the RK4 integrator: azimuth in radians for spherical spacetimes; for Kerr the
     /// step is a fixed fraction (0.1) of the distance from the centre.
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
     step: f64,
     /// Print one JSON object instead of text.
     #[arg(long)]
