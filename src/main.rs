@@ -14,6 +14,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Render a scene file (or the default scene) to an image.
+    Render(commands::render::Args),
     /// Trace one ray that comes in from infinity and report its fate and bending angle.
     Geodesic(commands::geodesic::Args),
     /// Measure performance on the standard workloads.
@@ -23,6 +25,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Render(args) => commands::render::run(&args),
         Command::Geodesic(args) => commands::geodesic::run(&args),
         Command::Bench(args) => commands::bench::run(&args),
     };

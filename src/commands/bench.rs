@@ -10,15 +10,17 @@ use std::time::Instant;
 pub enum Workload {
     /// 512² camera fan at r = 30 M, 40° field of view, Schwarzschild, adaptive 1e-8.
     Geodesics,
+    /// The Cornell box at 256², 64 samples per pixel, path depth 8.
+    Cornell,
 }
 
 #[derive(Parser, Debug)]
 pub struct Args {
     #[arg(value_enum)]
     workload: Workload,
-    /// Fan size (rays per side).
-    #[arg(long, default_value_t = 512)]
-    size: u32,
+    /// Image or fan size (pixels or rays per side); default 512 for geodesics, 256 for scenes.
+    #[arg(long)]
+    size: Option<u32>,
     /// Repetitions; the fastest is reported.
     #[arg(long, default_value_t = 3)]
     repeat: u32,
@@ -65,12 +67,71 @@ fn measure(
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
-    if args.size == 0 || args.size > 8192 {
-        return Err(format!("--size {}: must be between 1 and 8192", args.size));
+    if let Some(size) = args.size.filter(|&s| s == 0 || s > 8192) {
+        return Err(format!("--size {size}: must be between 1 and 8192"));
     }
-    let Workload::Geodesics = args.workload;
+    match args.workload {
+        Workload::Geodesics => geodesics(args),
+        Workload::Cornell => scene_bench(args, "cornell", None),
+    }
+}
+
+/// Renders a bundled scene at `size`², 64 spp, depth 8, on one thread and on all, and reports
+/// samples per second.
+fn scene_bench(args: &Args, name: &str, path: Option<&std::path::Path>) -> Result<(), String> {
+    let mut scene = super::render::load_scene(path)?;
+    let size = args.size.unwrap_or(256);
+    scene.settings.width = size;
+    scene.settings.height = size;
+    scene.settings.spp = 64;
+    scene.settings.max_depth = 8;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let cancel = std::sync::atomic::AtomicBool::new(false);
+    let mut rows = Vec::new();
+    for threads in [1, cores] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| e.to_string())?;
+        let mut best: Option<render::renderer::RenderStats> = None;
+        for _ in 0..args.repeat.max(1) {
+            let (_, stats) = pool.install(|| render::renderer::render(&scene, &cancel, &|_, _| {}));
+            if best.is_none_or(|b| stats.seconds < b.seconds) {
+                best = Some(stats);
+            }
+        }
+        if let Some(stats) = best {
+            rows.push((threads, stats));
+        }
+    }
+    if args.json {
+        let results: Vec<_> = rows
+            .iter()
+            .map(|(threads, s)| {
+                serde_json::json!({
+                    "threads": threads, "seconds": s.seconds, "samples": s.samples, "rays": s.paths.rays,
+                    "samples_per_second": s.samples as f64 / s.seconds, "rays_per_second": s.paths.rays as f64 / s.seconds,
+                })
+            })
+            .collect();
+        println!("{}", serde_json::json!({ "workload": name, "size": size, "spp": 64, "max_depth": 8, "results": results }));
+    } else {
+        println!("{name}: {size}×{size}, 64 spp, depth 8, spacetime {}", scene.spacetime.name());
+        println!("{:>7} {:>10} {:>12} {:>14} {:>14}", "threads", "seconds", "samples", "samples/s", "rays/s");
+        for (threads, s) in &rows {
+            println!(
+                "{:>7} {:>10.3} {:>12} {:>14.0} {:>14.0}",
+                threads,
+                s.seconds,
+                s.samples,
+                s.samples as f64 / s.seconds,
+                s.paths.rays as f64 / s.seconds
+            );
+        }
+    }
+    Ok(())
+}
+
+fn geodesics(args: &Args) -> Result<(), String> {
     let hole = Schwarzschild::new(1.0);
-    let fan = Fan { size: args.size, ..Fan::standard(1.0) };
+    let fan = Fan { size: args.size.unwrap_or(512), ..Fan::standard(1.0) };
     let settings = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-8 }, ..TraceSettings::default() };
     let all: Vec<u64> = (0..fan.rays()).collect();
     // The 4-D tracer is measured on every 4th ray of every 4th row, to keep the run short.

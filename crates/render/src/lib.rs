@@ -4,12 +4,21 @@
 //!
 //! Data flows one way: `geometry` → `shape` → `accel` → `texture`/`material`/`sky` → `sampling` → `film`.
 
+pub mod accel;
 pub mod color;
+pub mod film;
 pub mod geometry;
+pub mod image_io;
+pub mod material;
 pub mod sampling;
 pub mod shape;
-pub mod accel;
-pub mod texture;
-pub mod material;
 pub mod sky;
-pub mod film;
+pub mod texture;
+pub mod transform;
+pub mod camera;
+pub mod scene;
+pub mod settings;
+pub mod world;
+pub mod propagator;
+pub mod integrator;
+pub mod renderer;

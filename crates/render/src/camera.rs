@@ -1,0 +1,128 @@
+//! The pinhole / thin-lens camera. It is a static observer at its position; the directions it
+//! produces are in its local orthonormal frame, whose axes are aligned with the world's, and the
+//! propagator turns them into null momenta of the spacetime.
+
+use crate::geometry::Vec3;
+use crate::sampling::concentric_disk;
+use spacetime::Region;
+
+/// A camera: where it is, where it looks, and its lens.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub region: Region,
+    pub position: Vec3,
+    /// Unit axes of the image: right, up, and the viewing direction.
+    right: Vec3,
+    up: Vec3,
+    forward: Vec3,
+    /// `tan(vfov / 2)`.
+    tan_half_fov: f64,
+    /// Radius of the thin lens (0 for a pinhole).
+    pub lens_radius: f64,
+    /// Distance to the plane in focus, along `forward`.
+    pub focus_distance: f64,
+}
+
+/// A camera ray: start point and unit direction in the camera's local frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraRay {
+    pub origin: Vec3,
+    pub direction: Vec3,
+}
+
+impl Camera {
+    /// A camera at `position` looking at `look_at`, with `up` roughly up and vertical field of
+    /// view `vfov_deg` (degrees, in (0, 180)). `lens_radius > 0` gives depth of field focused at
+    /// `focus_distance` (default: the distance to `look_at`).
+    pub fn new(
+        region: Region,
+        position: Vec3,
+        look_at: Vec3,
+        up: Vec3,
+        vfov_deg: f64,
+        lens_radius: f64,
+        focus_distance: Option<f64>,
+    ) -> Result<Camera, String> {
+        let forward = (look_at - position).normalize_or_zero();
+        if !position.is_finite() || !look_at.is_finite() || forward == Vec3::ZERO {
+            return Err("look_at must differ from position, and both must be finite".into());
+        }
+        let right = forward.cross(up).normalize_or_zero();
+        if right == Vec3::ZERO || !right.is_finite() {
+            return Err("up must not be parallel to the viewing direction".into());
+        }
+        if !(vfov_deg > 0.0 && vfov_deg < 180.0) {
+            return Err(format!("fov must be in (0, 180) degrees, got {vfov_deg}"));
+        }
+        if !(lens_radius >= 0.0 && lens_radius.is_finite()) {
+            return Err(format!("aperture must be a finite number ≥ 0, got {lens_radius}"));
+        }
+        let focus_distance = focus_distance.unwrap_or((look_at - position).length());
+        if !(focus_distance > 0.0 && focus_distance.is_finite()) {
+            return Err(format!("focus distance must be > 0, got {focus_distance}"));
+        }
+        Ok(Camera {
+            region,
+            position,
+            right,
+            up: right.cross(forward),
+            forward,
+            tan_half_fov: (0.5 * vfov_deg.to_radians()).tan(),
+            lens_radius,
+            focus_distance,
+        })
+    }
+
+    pub fn forward(&self) -> Vec3 {
+        self.forward
+    }
+
+    /// The ray through film position `(x, y)` in pixels of a `width × height` image (x right, y
+    /// down), with lens sample `lens_u`.
+    pub fn ray(&self, x: f64, y: f64, width: u32, height: u32, lens_u: [f64; 2]) -> CameraRay {
+        let aspect = f64::from(width) / f64::from(height);
+        let sx = (2.0 * x / f64::from(width) - 1.0) * self.tan_half_fov * aspect;
+        let sy = (1.0 - 2.0 * y / f64::from(height)) * self.tan_half_fov;
+        let dir = (self.forward + sx * self.right + sy * self.up).normalize();
+        if self.lens_radius == 0.0 {
+            return CameraRay { origin: self.position, direction: dir };
+        }
+        // Thin lens: all rays through the lens meet at the focus point of the pinhole ray.
+        let focus = self.position + dir * (self.focus_distance / dir.dot(self.forward));
+        let [lx, ly] = concentric_disk(lens_u);
+        let origin = self.position + self.lens_radius * (lx * self.right + ly * self.up);
+        CameraRay { origin, direction: (focus - origin).normalize() }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn centre_ray_looks_at_the_target_and_corners_span_the_fov() {
+        let c = Camera::new(Region::Upper, Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::Y, 90.0, 0.0, None).unwrap();
+        let r = c.ray(50.0, 50.0, 100, 100, [0.5, 0.5]);
+        assert!((r.direction - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-12);
+        let top_left = c.ray(0.0, 0.0, 100, 100, [0.5, 0.5]).direction;
+        // tan 45° = 1: the corner direction is (−1, 1, −1)/√3.
+        assert!((top_left - Vec3::new(-1.0, 1.0, -1.0).normalize()).length() < 1e-12);
+    }
+
+    #[test]
+    fn thin_lens_rays_meet_in_the_focal_plane() {
+        let c = Camera::new(Region::Upper, Vec3::ZERO, Vec3::new(0.0, 0.0, -4.0), Vec3::Y, 40.0, 0.2, None).unwrap();
+        let a = c.ray(10.0, 20.0, 64, 64, [0.1, 0.9]);
+        let b = c.ray(10.0, 20.0, 64, 64, [0.8, 0.3]);
+        let at_plane = |r: CameraRay| r.origin + r.direction * ((-4.0 - r.origin.z) / r.direction.z);
+        assert!((at_plane(a) - at_plane(b)).length() < 1e-12);
+        assert!((a.origin - b.origin).length() > 1e-3);
+    }
+
+    #[test]
+    fn degenerate_cameras_are_rejected() {
+        assert!(Camera::new(Region::Upper, Vec3::ZERO, Vec3::ZERO, Vec3::Y, 40.0, 0.0, None).is_err());
+        assert!(Camera::new(Region::Upper, Vec3::ZERO, Vec3::Y, Vec3::Y, 40.0, 0.0, None).is_err());
+        assert!(Camera::new(Region::Upper, Vec3::ZERO, Vec3::Z, Vec3::Y, 180.0, 0.0, None).is_err());
+    }
+}

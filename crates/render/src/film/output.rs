@@ -1,0 +1,399 @@
+//! Writing the film to an image file, the format chosen by the file's extension.
+//!
+//! | extension | contents |
+//! |---|---|
+//! | `.png` | 8-bit sRGB: exposure, tone curve, sRGB OETF ([`to_rgb8`]) |
+//! | `.exr` | OpenEXR, 32-bit float linear RGB, ZIP (lossless): exposure as a linear scale only |
+//! | `.hdr` | Radiance RGBE, linear: exposure as a linear scale; negatives clamped to 0 |
+//!
+//! Extensions match case-insensitively. Files are written to a temporary sibling and renamed into
+//! place, so a reader (or a render interrupted mid-write) never sees a half-written image. Partial
+//! films are fine: pixels with no samples are black.
+
+use std::ffi::OsString;
+use std::fmt;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use image::codecs::hdr::HdrEncoder;
+use image::codecs::png::PngEncoder;
+use image::{ExtendedColorType, ImageEncoder};
+
+use super::{to_rgb8, Film, ToneMap};
+
+/// The image formats [`write_image`] can produce.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ImageFormat {
+    Png,
+    Exr,
+    Hdr,
+}
+
+impl ImageFormat {
+    /// The format named by `path`'s extension (case-insensitive), if supported.
+    pub fn from_path(path: &Path) -> Option<Self> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "png" => Some(Self::Png),
+            "exr" => Some(Self::Exr),
+            "hdr" => Some(Self::Hdr),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for ImageFormat {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Png => "PNG",
+            Self::Exr => "OpenEXR",
+            Self::Hdr => "Radiance HDR",
+        })
+    }
+}
+
+const SUPPORTED: &str = ".png, .exr, .hdr";
+
+/// Why an image could not be written. Every variant names the file.
+#[derive(Debug)]
+pub enum ImageWriteError {
+    /// The extension is missing or names no supported format.
+    UnsupportedExtension { path: PathBuf },
+    /// The directory the file should go in does not exist.
+    MissingDirectory { path: PathBuf, directory: PathBuf },
+    /// The file's parent path exists but is not a directory.
+    NotADirectory { path: PathBuf, directory: PathBuf },
+    /// The film has no pixels (zero width or height).
+    EmptyImage { path: PathBuf },
+    /// The tone map's exposure is NaN or infinite.
+    InvalidExposure { path: PathBuf, exposure_ev: f64 },
+    /// Creating, writing or renaming the file failed.
+    Io { path: PathBuf, source: std::io::Error },
+    /// The encoder failed.
+    Encode { path: PathBuf, format: ImageFormat, source: Box<dyn std::error::Error + Send + Sync> },
+}
+
+impl fmt::Display for ImageWriteError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::UnsupportedExtension { path } => {
+                let ext = match path.extension() {
+                    Some(ext) => format!("unsupported extension '.{}'", ext.to_string_lossy()),
+                    None => "no file extension".to_owned(),
+                };
+                write!(f, "cannot write image '{}': {ext} (supported: {SUPPORTED})", path.display())
+            }
+            Self::MissingDirectory { path, directory } => {
+                write!(f, "cannot write image '{}': directory '{}' does not exist", path.display(), directory.display())
+            }
+            Self::NotADirectory { path, directory } => {
+                write!(f, "cannot write image '{}': '{}' is not a directory", path.display(), directory.display())
+            }
+            Self::EmptyImage { path } => {
+                write!(f, "cannot write image '{}': the image has no pixels", path.display())
+            }
+            Self::InvalidExposure { path, exposure_ev } => {
+                write!(f, "cannot write image '{}': exposure must be finite (got {exposure_ev} EV)", path.display())
+            }
+            Self::Io { path, source } => {
+                write!(f, "cannot write image '{}': {source}", path.display())
+            }
+            Self::Encode { path, format, source } => {
+                write!(f, "cannot write image '{}' as {format}: {source}", path.display())
+            }
+        }
+    }
+}
+
+impl std::error::Error for ImageWriteError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Io { source, .. } => Some(source),
+            Self::Encode { source, .. } => Some(source.as_ref()),
+            _ => None,
+        }
+    }
+}
+
+/// Checks, without writing anything, that `path` has a supported extension and that its directory
+/// exists; returns the format. Call it before a long render so a typo fails fast.
+pub fn check_output_path(path: &Path) -> Result<ImageFormat, ImageWriteError> {
+    let format =
+        ImageFormat::from_path(path).ok_or_else(|| ImageWriteError::UnsupportedExtension { path: path.to_owned() })?;
+    if let Some(directory) = path.parent() {
+        // An empty parent means the current directory.
+        if !directory.as_os_str().is_empty() && !directory.is_dir() {
+            let (path, directory) = (path.to_owned(), directory.to_owned());
+            return Err(if directory.exists() {
+                ImageWriteError::NotADirectory { path, directory }
+            } else {
+                ImageWriteError::MissingDirectory { path, directory }
+            });
+        }
+    }
+    Ok(format)
+}
+
+/// Writes `film` to `path` in the format its extension names (see the module docs); `tonemap`'s
+/// curve applies to PNG only, its exposure to every format.
+pub fn write_image(film: &Film, path: &Path, tonemap: &ToneMap) -> Result<(), ImageWriteError> {
+    let format = check_output_path(path)?;
+    if film.width() == 0 || film.height() == 0 {
+        return Err(ImageWriteError::EmptyImage { path: path.to_owned() });
+    }
+    if !tonemap.exposure_ev.is_finite() {
+        return Err(ImageWriteError::InvalidExposure { path: path.to_owned(), exposure_ev: tonemap.exposure_ev });
+    }
+
+    let temporary = temporary_sibling(path);
+    let result = write_to(film, &temporary, format, tonemap).and_then(|()| {
+        std::fs::rename(&temporary, path).map_err(|source| ImageWriteError::Io { path: path.to_owned(), source })
+    });
+    if result.is_err() {
+        // Best effort: the temporary may not exist, and the original error is what matters.
+        let _ = std::fs::remove_file(&temporary);
+    }
+    result.map_err(|e| e.with_path(path))
+}
+
+impl ImageWriteError {
+    /// Reports the user's path rather than the temporary one.
+    fn with_path(self, user_path: &Path) -> Self {
+        let path = user_path.to_owned();
+        match self {
+            Self::Io { source, .. } => Self::Io { path, source },
+            Self::Encode { format, source, .. } => Self::Encode { path, format, source },
+            other => other,
+        }
+    }
+}
+
+/// `dir/.name.partial-<pid>`: same directory (so the rename is atomic on one file system), hidden,
+/// and distinct per process.
+fn temporary_sibling(path: &Path) -> PathBuf {
+    let mut name = OsString::from(".");
+    name.push(path.file_name().unwrap_or_default());
+    name.push(format!(".partial-{}", std::process::id()));
+    path.with_file_name(name)
+}
+
+fn write_to(film: &Film, path: &Path, format: ImageFormat, tonemap: &ToneMap) -> Result<(), ImageWriteError> {
+    let io_error = |source| ImageWriteError::Io { path: path.to_owned(), source };
+    let encode_error = |source: Box<dyn std::error::Error + Send + Sync>| ImageWriteError::Encode {
+        path: path.to_owned(),
+        format,
+        source,
+    };
+    let mut writer = BufWriter::new(File::create(path).map_err(io_error)?);
+    let (width, height) = (film.width(), film.height());
+    let scale = tonemap.exposure_scale();
+    match format {
+        ImageFormat::Png => {
+            let bytes = to_rgb8(film, tonemap);
+            PngEncoder::new(&mut writer)
+                .write_image(&bytes, width, height, ExtendedColorType::Rgb8)
+                .map_err(|e| encode_error(Box::new(e)))?;
+        }
+        ImageFormat::Exr => {
+            use exr::prelude::{Encoding, Image, SpecificChannels, Vec2, WritableImage as _};
+            let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
+                // x < width and y < height, both u32, so the casts are lossless.
+                let [r, g, b] = film.pixel_f64(x as u32, y as u32).map(|c| (c * scale) as f32);
+                (r, g, b)
+            });
+            let size = (width as usize, height as usize);
+            Image::from_encoded_channels(size, Encoding::SMALL_LOSSLESS, channels)
+                .write()
+                .to_buffered(&mut writer)
+                .map_err(|e| encode_error(Box::new(e)))?;
+        }
+        ImageFormat::Hdr => {
+            let pixels: Vec<image::Rgb<f32>> = film
+                .bounds()
+                .pixels()
+                .map(|(x, y)| image::Rgb(film.pixel_f64(x, y).map(|c| (c * scale).max(0.0) as f32)))
+                .collect();
+            HdrEncoder::new(&mut writer)
+                .encode(&pixels, width as usize, height as usize)
+                .map_err(|e| encode_error(Box::new(e)))?;
+        }
+    }
+    writer.flush().map_err(io_error)?;
+    writer.get_ref().sync_all().map_err(io_error)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+    use crate::film::Curve;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// A fresh path in the system temporary directory, unique per process and call.
+    fn temp_path(stem: &str, ext: &str) -> PathBuf {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        std::env::temp_dir().join(format!("nullpath-film-{}-{stem}-{n}.{ext}", std::process::id()))
+    }
+
+    /// Removes the file when dropped, so failing tests do not leave files behind.
+    struct Cleanup(PathBuf);
+    impl Drop for Cleanup {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_file(&self.0);
+        }
+    }
+
+    /// 3×2 film: a few exact values, one pixel left without samples.
+    fn small_film() -> Film {
+        let mut film = Film::new(3, 2);
+        film.add_sample(0, 0, Rgb::new(0.0, 0.5, 1.0), 1.0);
+        film.add_sample(1, 0, Rgb::new(2.0, 0.18, 0.25), 1.0);
+        film.add_sample(2, 0, Rgb::new(3.75, 1234.5, 1e-3), 1.0);
+        film.add_sample(0, 1, Rgb::new(0.25, 0.25, 0.25), 1.0);
+        film.add_sample(0, 1, Rgb::new(0.75, 0.75, 0.75), 1.0);
+        film.add_sample(1, 1, Rgb::new(-0.5, 7.0, 0.125), 1.0);
+        // (2, 1) has no samples: black.
+        film
+    }
+
+    #[test]
+    fn png_round_trip() {
+        let film = small_film();
+        let path = temp_path("round-trip", "png");
+        let _cleanup = Cleanup(path.clone());
+        let tonemap = ToneMap { exposure_ev: 0.0, curve: Curve::Linear };
+        write_image(&film, &path, &tonemap).expect("PNG written");
+        let read = image::open(&path).expect("PNG readable").to_rgb8();
+        assert_eq!(read.dimensions(), (3, 2));
+        assert_eq!(read.as_raw(), &to_rgb8(&film, &tonemap));
+        assert_eq!(read.get_pixel(0, 0).0, [0, 188, 255]);
+        assert_eq!(read.get_pixel(1, 0).0[1], 118);
+        assert_eq!(read.get_pixel(0, 1).0, [188, 188, 188]);
+        assert_eq!(read.get_pixel(1, 1).0, [0, 255, 99]);
+        assert_eq!(read.get_pixel(2, 1).0, [0, 0, 0]);
+        // The temporary file was renamed away.
+        assert!(!temporary_sibling(&path).exists());
+    }
+
+    #[test]
+    fn exr_round_trip_is_exact_in_f32() {
+        let film = small_film();
+        let path = temp_path("round-trip", "EXR");
+        let _cleanup = Cleanup(path.clone());
+        // One stop up: an exact doubling in binary floating point. The curve does not apply.
+        let tonemap = ToneMap { exposure_ev: 1.0, curve: Curve::Filmic };
+        write_image(&film, &path, &tonemap).expect("EXR written");
+        let read = image::open(&path).expect("EXR readable").into_rgb32f();
+        assert_eq!(read.dimensions(), (3, 2));
+        for (x, y) in film.bounds().pixels() {
+            let expected = film.pixel(x, y) * 2.0;
+            let got = read.get_pixel(x, y).0;
+            assert_eq!(got, expected.to_array(), "pixel ({x}, {y})");
+        }
+        assert_eq!(read.get_pixel(1, 1).0[0], -1.0, "no clamping");
+        assert_eq!(read.get_pixel(2, 0).0[1], 2469.0, "values above 1 kept");
+    }
+
+    #[test]
+    fn hdr_round_trip_within_rgbe_precision() {
+        let film = small_film();
+        let path = temp_path("round-trip", "hdr");
+        let _cleanup = Cleanup(path.clone());
+        write_image(&film, &path, &ToneMap::default()).expect("HDR written");
+        let read = image::open(&path).expect("HDR readable").into_rgb32f();
+        // RGBE keeps 8 mantissa bits relative to the pixel's largest channel.
+        for (x, y) in film.bounds().pixels() {
+            let expected = film.pixel(x, y).max(Rgb::ZERO);
+            let got = Rgb::from_array(read.get_pixel(x, y).0);
+            let tolerance = expected.max_element() / 128.0;
+            assert!((got - expected).abs().max_element() <= tolerance, "({x}, {y}): {got}");
+        }
+    }
+
+    #[test]
+    fn partial_film_writes_black_where_unsampled() {
+        let mut film = Film::new(4, 1);
+        film.add_sample(1, 0, Rgb::ONE, 1.0);
+        let path = temp_path("partial", "png");
+        let _cleanup = Cleanup(path.clone());
+        write_image(&film, &path, &ToneMap::default()).expect("PNG written");
+        let read = image::open(&path).expect("PNG readable").to_rgb8();
+        assert_eq!(read.as_raw(), &[0, 0, 0, 255, 255, 255, 0, 0, 0, 0, 0, 0]);
+    }
+
+    #[test]
+    fn unsupported_extension_is_a_clear_error() {
+        let film = small_film();
+        for name in ["render.jpg", "render", "render.png.bak"] {
+            let path = std::env::temp_dir().join(name);
+            let err = write_image(&film, &path, &ToneMap::default()).expect_err("must fail");
+            assert!(matches!(err, ImageWriteError::UnsupportedExtension { .. }));
+            let message = err.to_string();
+            assert!(message.contains(&path.display().to_string()), "{message}");
+            assert!(message.contains(".png") && message.contains(".exr"), "{message}");
+            assert!(!path.exists());
+        }
+    }
+
+    #[test]
+    fn missing_directory_is_a_clear_error() {
+        let directory = std::env::temp_dir().join(format!("nullpath-film-no-such-directory-{}", std::process::id()));
+        let path = directory.join("out.png");
+        let err = write_image(&small_film(), &path, &ToneMap::default()).expect_err("must fail");
+        assert!(matches!(err, ImageWriteError::MissingDirectory { .. }));
+        let message = err.to_string();
+        assert!(message.contains(&path.display().to_string()), "{message}");
+        assert!(message.contains("does not exist"), "{message}");
+        assert!(!directory.exists());
+    }
+
+    #[test]
+    fn parent_that_is_a_file_is_a_clear_error() {
+        let not_a_directory = temp_path("plain-file", "txt");
+        let _cleanup = Cleanup(not_a_directory.clone());
+        std::fs::write(&not_a_directory, b"x").expect("temp file");
+        let path = not_a_directory.join("out.exr");
+        let err = write_image(&small_film(), &path, &ToneMap::default()).expect_err("must fail");
+        assert!(matches!(err, ImageWriteError::NotADirectory { .. }));
+        let message = err.to_string();
+        assert!(message.contains(&path.display().to_string()), "{message}");
+        assert!(message.contains("is not a directory"), "{message}");
+    }
+
+    #[test]
+    fn io_failure_names_the_users_path_and_leaves_no_temporary() {
+        // The target is an existing directory: everything succeeds until the final rename.
+        let path = temp_path("is-a-directory", "png");
+        std::fs::create_dir(&path).expect("temp directory");
+        let err = write_image(&small_film(), &path, &ToneMap::default()).expect_err("must fail");
+        let temporary_left = temporary_sibling(&path).exists();
+        std::fs::remove_dir(&path).expect("remove temp directory");
+        assert!(matches!(err, ImageWriteError::Io { .. }), "{err:?}");
+        assert!(err.to_string().contains(&path.display().to_string()), "{err}");
+        assert!(std::error::Error::source(&err).is_some());
+        assert!(!temporary_left);
+    }
+
+    #[test]
+    fn empty_film_and_bad_exposure_are_errors() {
+        let path = temp_path("empty", "png");
+        let err = write_image(&Film::new(0, 4), &path, &ToneMap::default()).expect_err("empty");
+        assert!(matches!(err, ImageWriteError::EmptyImage { .. }));
+        let tonemap = ToneMap { exposure_ev: f64::NAN, curve: Curve::Linear };
+        let err = write_image(&small_film(), &path, &tonemap).expect_err("NaN exposure");
+        assert!(err.to_string().contains("exposure"));
+        assert!(!path.exists());
+    }
+
+    #[test]
+    fn format_from_extension() {
+        assert_eq!(ImageFormat::from_path(Path::new("a/b.PNG")), Some(ImageFormat::Png));
+        assert_eq!(ImageFormat::from_path(Path::new("b.exr")), Some(ImageFormat::Exr));
+        assert_eq!(ImageFormat::from_path(Path::new("b.Hdr")), Some(ImageFormat::Hdr));
+        assert_eq!(ImageFormat::from_path(Path::new("b.tiff")), None);
+        assert_eq!(ImageFormat::from_path(Path::new(".png")), None);
+        assert_eq!(check_output_path(Path::new("relative.png")).ok(), Some(ImageFormat::Png));
+    }
+}

@@ -1,0 +1,191 @@
+//! Unidirectional path tracing with Russian roulette (Kajiya 1986; pbrt-v4 §13.4).
+//!
+//! Every segment is a null geodesic found by the [`Propagator`], and every vertex works in the
+//! local orthonormal frame of the observer at the hit. Along a segment, radiance scales with the
+//! fourth power of the frequency shift between the observers at its ends (`I_ν/ν³` is invariant;
+//! integrated over frequency, `I ∝ ν⁴`), which accounts for gravitational red- and blueshift.
+//!
+//! In flat space, direct light is also sampled on the emitters and combined with BSDF sampling
+//! by multiple importance sampling (Veach 1997, power heuristic): a straight shadow ray is then
+//! exact. In curved space light travels on geodesics, so straight shadow rays would be wrong;
+//! there lights are found by BSDF sampling alone.
+
+use super::stats::PathStats;
+use crate::color::Rgb;
+use crate::geometry::{Frame, Ray, Vec3};
+use crate::material::Bsdf;
+use crate::propagator::{Arrival, Propagator, RayEnd};
+use crate::sampling::{power_heuristic, Rng};
+use crate::shape::offset_origin;
+use crate::world::World;
+use spacetime::Region;
+
+/// Paths start surviving Russian roulette unconditionally for this many bounces.
+const ROULETTE_START: u32 = 2;
+
+pub struct PathIntegrator<'a> {
+    world: &'a World,
+    propagator: &'a Propagator,
+    max_depth: u32,
+    /// Next-event estimation with MIS (flat space only).
+    next_event: bool,
+}
+
+/// Where the previous bounce left from, for the MIS weight of an emitter hit by BSDF sampling.
+#[derive(Clone, Copy)]
+struct Bounce {
+    pdf: f64,
+    specular: bool,
+}
+
+impl<'a> PathIntegrator<'a> {
+    /// `brute_force` disables light sampling everywhere (the unbiased reference).
+    pub fn new(world: &'a World, propagator: &'a Propagator, max_depth: u32, brute_force: bool) -> Self {
+        Self { world, propagator, max_depth, next_event: propagator.is_flat() && !brute_force }
+    }
+
+    /// Radiance arriving at `origin` (in `region`) from the local-frame direction `direction`
+    /// (the direction the backward ray leaves in).
+    pub fn radiance(&self, region: Region, origin: Vec3, direction: Vec3, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
+        let mut radiance = Rgb::ZERO;
+        let mut beta = Rgb::ONE;
+        // Product of η² over refractions: undoes the radiance scaling for the roulette decision,
+        // so a path through clear glass is never killed for having entered it (pbrt-v4 §13.4.4).
+        let mut eta_scale = 1.0f64;
+        let (mut region, mut origin, mut direction) = (region, origin, direction);
+        let mut bounce = Bounce { pdf: 0.0, specular: true };
+        let mut depth = 0;
+        loop {
+            stats.rays += 1;
+            let arrival = match self.propagator.trace(self.world, region, origin, direction) {
+                RayEnd::Hit(a) => a,
+                RayEnd::Escaped { region, direction, traversed, energy } => {
+                    radiance += beta * shift(energy) * self.world.sky(region).radiance(direction);
+                    if traversed {
+                        stats.fates.traversed += 1;
+                    } else {
+                        stats.fates.escaped += 1;
+                    }
+                    return radiance;
+                }
+                RayEnd::Captured => {
+                    stats.fates.captured += 1;
+                    return radiance;
+                }
+                RayEnd::Failed => {
+                    stats.fates.failed += 1;
+                    return radiance;
+                }
+            };
+            beta *= shift(arrival.energy);
+            let object = self.world.object(arrival.region, arrival.object);
+            let hit = &arrival.hit;
+            let ng = self.propagator.local_normal(arrival.region, hit.p, hit.ng);
+            if let Some(emission) = object.emission {
+                let le = emission.radiance_towards(ng, -arrival.direction);
+                if le != Rgb::ZERO {
+                    radiance += beta * le * self.emitter_weight(&arrival, ng, bounce) as f32;
+                }
+            }
+            if depth == self.max_depth {
+                stats.fates.absorbed += 1;
+                return radiance;
+            }
+            depth += 1;
+            let bsdf = self.world.materials[object.material].bsdf(hit.uv, hit.p);
+            let ns = self.propagator.local_normal(arrival.region, hit.p, hit.ns);
+            let frame = Frame::from_normal(ns);
+            let wo = frame.to_local(-arrival.direction);
+            if self.next_event && !bsdf.is_delta() {
+                radiance += beta * self.direct_light(&arrival, &bsdf, &frame, wo, rng, stats);
+            }
+            let Some(sample) = bsdf.sample(wo, rng.next_f64(), rng.next_2d()) else {
+                stats.fates.absorbed += 1;
+                return radiance;
+            };
+            beta *= sample.weight;
+            if beta == Rgb::ZERO || !beta.is_finite() {
+                stats.fates.absorbed += 1;
+                return radiance;
+            }
+            eta_scale *= sample.eta * sample.eta;
+            let rr_beta = f64::from(beta.max_element()) * eta_scale;
+            if depth >= ROULETTE_START && rr_beta < 1.0 {
+                // Survive with probability equal to the throughput: paths that still carry
+                // everything are never cut.
+                if rng.next_f64() >= rr_beta {
+                    stats.fates.absorbed += 1;
+                    return radiance;
+                }
+                beta /= rr_beta as f32;
+            }
+            bounce = Bounce { pdf: sample.pdf, specular: sample.is_delta };
+            direction = frame.to_world(sample.wi);
+            origin = leave(hit.p, hit.ng, ng, direction);
+            region = arrival.region;
+        }
+    }
+
+    /// MIS weight of an emitter reached by BSDF sampling, against having sampled it directly.
+    fn emitter_weight(&self, arrival: &Arrival, ng: Vec3, bounce: Bounce) -> f64 {
+        if !self.next_event || bounce.specular {
+            return 1.0;
+        }
+        let shape = &self.world.object(arrival.region, arrival.object).shape;
+        let cos = ng.dot(arrival.direction).abs();
+        let choice = self.world.light_probability(arrival.region, arrival.object);
+        if choice == 0.0 || cos == 0.0 {
+            return 1.0;
+        }
+        let light_pdf = choice * arrival.distance * arrival.distance / (cos * shape.area());
+        power_heuristic(bounce.pdf, light_pdf)
+    }
+
+    /// One light sample with a straight shadow ray (flat space), MIS-weighted.
+    fn direct_light(&self, at: &Arrival, bsdf: &Bsdf, frame: &Frame, wo: Vec3, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
+        let (u_choice, u_point) = (rng.next_f64(), rng.next_2d());
+        let Some(choice) = self.world.choose_light(at.region, u_choice) else { return Rgb::ZERO };
+        let light = self.world.object(at.region, choice.object);
+        let (point, normal) = light.shape.sample_area(u_point);
+        let to_light = point - at.hit.p;
+        let dist2 = to_light.length_squared();
+        let wi = to_light / dist2.sqrt();
+        let Some(emission) = light.emission else { return Rgb::ZERO };
+        let le = emission.radiance_towards(normal, -wi);
+        let cos_light = normal.dot(wi).abs();
+        let wi_local = frame.to_local(wi);
+        let f = bsdf.f(wo, wi_local) * wi_local.z.abs() as f32;
+        if le == Rgb::ZERO || cos_light == 0.0 || f == Rgb::ZERO {
+            return Rgb::ZERO;
+        }
+        let origin = offset_origin(at.hit.p, at.hit.ng, wi);
+        let to_point = point - origin;
+        let length = to_point.length();
+        stats.rays += 1;
+        // Stop just short of the light so the light itself does not count as a blocker.
+        if self.world.occluded(at.region, &Ray::new(origin, to_point / length, length * (1.0 - 1e-6))) {
+            return Rgb::ZERO;
+        }
+        let light_pdf = choice.probability * dist2 / (cos_light * light.shape.area());
+        let weight = power_heuristic(light_pdf, bsdf.pdf(wo, wi_local));
+        f * le * (weight / light_pdf) as f32
+    }
+}
+
+/// Radiance factor of a segment whose far end measures the photon at `energy` (relative to the
+/// near end): `(ν_near / ν_far)⁴`.
+fn shift(energy: f64) -> f32 {
+    if energy == 1.0 {
+        1.0
+    } else {
+        energy.powi(-4) as f32
+    }
+}
+
+/// Start of the next segment from a hit at `p`: off the surface on the side `direction` goes.
+/// The side is decided in the local frame (normal covector `ng_local` against the local
+/// direction), the offset taken along the world normal `ng`.
+fn leave(p: Vec3, ng: Vec3, ng_local: Vec3, direction: Vec3) -> Vec3 {
+    let side = if direction.dot(ng_local) >= 0.0 { ng } else { -ng };
+    offset_origin(p, ng, side)
+}

@@ -1,0 +1,343 @@
+//! Light through the scene's spacetime: a ray leaves a point along a direction measured in the
+//! local frame of the static observer there, follows the null geodesic step by step, and every
+//! step's chord is tested against the scene (physics notes, "Rays meeting objects").
+//!
+//! In flat space the geodesic is a single straight step of infinite length, so the flat case
+//! costs one BVH query. Spherically symmetric spacetimes use the exact in-plane tracer; others
+//! (Kerr) the 4-D Hamiltonian tracer. Curved steps are split where their chord strays more than
+//! `epsilon` from the curve, so the chords follow the ray within `epsilon` and a hit on a chord
+//! is a hit on the ray to that tolerance.
+//!
+//! Local frames have their axes aligned with the world's: directions handed in and out are in
+//! the static observer's orthonormal frame (the normal observer's inside a Kerr ergosphere),
+//! which in curved space differs from the world coordinate directions by the metric.
+
+use crate::geometry::{Ray, Vec3};
+use crate::settings::Intersection;
+use crate::shape::SurfaceHit;
+use crate::world::World;
+use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
+use spacetime::geodesic::{HamiltonianStep, HamiltonianTracer, Integrator, State, TraceSettings};
+use spacetime::metric::Metric;
+use spacetime::{Ellis, Fate, Kerr, Region, Schwarzschild, Spacetime, Tetrad, Visit};
+
+/// Where a traced ray ended.
+#[derive(Clone, Copy, Debug)]
+pub enum RayEnd {
+    /// It reached a surface.
+    Hit(Arrival),
+    /// It escaped to infinity in `region` (the other one than it started in if `traversed`).
+    Escaped { region: Region, direction: Vec3, traversed: bool, energy: f64 },
+    /// It crossed an event horizon.
+    Captured,
+    /// It failed numerically (counted, never shaded).
+    Failed,
+}
+
+/// A ray arriving at a surface.
+#[derive(Clone, Copy, Debug)]
+pub struct Arrival {
+    pub region: Region,
+    pub object: usize,
+    pub hit: SurfaceHit,
+    /// Direction of travel at the hit in the local frame.
+    pub direction: Vec3,
+    /// Straight-line distance of the last chord segment from its start to the hit.
+    pub distance: f64,
+    /// Photon energy measured by the local observer at the hit, relative to the energy measured
+    /// at the ray's start (1 in flat space).
+    pub energy: f64,
+}
+
+/// How rays are propagated; built once per render.
+#[derive(Clone, Debug)]
+pub struct Propagator {
+    spacetime: Spacetime,
+    trace: TraceSettings,
+    /// Largest allowed distance between a chord and the curved step it stands for.
+    epsilon: f64,
+    intersection: Intersection,
+}
+
+impl Propagator {
+    /// A propagator for `spacetime`; `scene_radius` bounds every object's distance from the
+    /// origin (rays beyond it and moving away have escaped).
+    pub fn new(spacetime: Spacetime, scene_radius: f64, rtol: f64, intersection: Intersection) -> Self {
+        let scale = spacetime.length_scale();
+        let escape_radius = (2.0 * scene_radius).max(100.0 * scale);
+        let trace = TraceSettings {
+            integrator: Integrator::Adaptive { rtol },
+            escape_radius,
+            max_step_fraction: 0.5,
+            max_steps: 1_000_000,
+        };
+        let epsilon = 1e-4 * scene_radius.max(scale);
+        Self { spacetime, trace, epsilon, intersection }
+    }
+
+    /// Chord tolerance ε, in scene units: 10⁻⁴ of the scene's radius.
+    pub fn epsilon(&self) -> f64 {
+        self.epsilon
+    }
+
+    pub fn is_flat(&self) -> bool {
+        match self.spacetime {
+            Spacetime::Minkowski(_) => true,
+            Spacetime::Schwarzschild(m) => m.mass == 0.0,
+            Spacetime::Kerr(m) => m.mass == 0.0,
+            Spacetime::Ellis(_) => false,
+        }
+    }
+
+    /// The radial scale `κ = dρ/dl` of the static frame at world point `p`: world radial
+    /// lengths per proper radial length (1 in flat space, `√(1 − 2M/r)` for Schwarzschild,
+    /// `|l|/ρ` for Ellis). Tangential lengths are proper in world units.
+    fn radial_scale(&self, p: Vec3) -> f64 {
+        let rho = p.length();
+        match self.spacetime {
+            Spacetime::Schwarzschild(m) => (1.0 - 2.0 * m.mass / rho).max(0.0).sqrt(),
+            Spacetime::Ellis(m) => ((rho - m.throat) * (rho + m.throat)).max(0.0).sqrt() / rho,
+            Spacetime::Minkowski(_) | Spacetime::Kerr(_) => 1.0,
+        }
+    }
+
+    /// Unit normal in the local frame at `p` for a surface with world normal `n`: the normal is a
+    /// covector (the gradient of the surface function), so its radial component scales by `κ`.
+    pub fn local_normal(&self, region: Region, p: Vec3, n: Vec3) -> Vec3 {
+        if let Spacetime::Kerr(m) = self.spacetime {
+            return kerr_local_normal(&m, region, p, n);
+        }
+        let kappa = self.radial_scale(p);
+        if kappa == 1.0 || p == Vec3::ZERO {
+            return n;
+        }
+        let r = p.normalize();
+        let radial = n.dot(r);
+        (n + (kappa - 1.0) * radial * r).normalize()
+    }
+
+    /// Traces the ray that leaves world point `origin` of `region` along the local-frame unit
+    /// direction `direction`, to its end.
+    pub fn trace(&self, world: &World, region: Region, origin: Vec3, direction: Vec3) -> RayEnd {
+        match &self.spacetime {
+            Spacetime::Minkowski(_) => straight(world, region, origin, direction),
+            Spacetime::Schwarzschild(m) if m.mass == 0.0 => straight(world, region, origin, direction),
+            Spacetime::Schwarzschild(m) => self.in_plane(m, world, region, origin, direction),
+            Spacetime::Ellis(m) => self.in_plane(m, world, region, origin, direction),
+            Spacetime::Kerr(m) => self.hamiltonian(m, world, region, origin, direction),
+        }
+    }
+
+    fn in_plane<M: PlaneMetric + Lapse>(&self, metric: &M, world: &World, region: Region, origin: Vec3, direction: Vec3) -> RayEnd {
+        let Some(start) = PlaneStart::from_observer(metric, region, origin.to_array(), direction.to_array()) else {
+            return RayEnd::Captured;
+        };
+        let lapse0 = metric.lapse(origin.length());
+        let mut arrival: Option<(ChordHit, Vec3, Region)> = None;
+        let t = trace_plane(metric, start, &self.trace, |step| {
+            let region = step.region();
+            let found = match step {
+                PlaneStep::Straight { from, direction, length, .. } => {
+                    let chord = Ray::new(Vec3::from_array(*from), Vec3::from_array(*direction), *length);
+                    world.intersect(region, &chord).map(|(object, t)| ChordHit { object, chord, t, theta: 0.0 })
+                }
+                PlaneStep::Curved { .. } => self.curved(world, region, &|theta| Vec3::from_array(step.point(metric, theta).position)),
+            };
+            match found {
+                Some(hit) => {
+                    let direction = match step {
+                        PlaneStep::Straight { .. } => hit.chord.dir,
+                        PlaneStep::Curved { .. } => Vec3::from_array(step.point(metric, hit.theta).direction),
+                    };
+                    arrival = Some((hit, direction, region));
+                    Visit::Stop
+                }
+                None => Visit::Continue,
+            }
+        });
+        match t.fate {
+            Fate::Stopped => {
+                let Some((found, direction, region)) = arrival else { return RayEnd::Failed };
+                let hit = world.surface(region, found.object, &found.chord, found.t);
+                let energy = lapse0 / metric.lapse(hit.p.length());
+                RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy })
+            }
+            Fate::Escaped { direction } | Fate::Traversed { direction } => RayEnd::Escaped {
+                region: if matches!(t.fate, Fate::Traversed { .. }) { other(region) } else { region },
+                direction: Vec3::from_array(direction),
+                traversed: matches!(t.fate, Fate::Traversed { .. }),
+                energy: lapse0,
+            },
+            Fate::Captured => RayEnd::Captured,
+            Fate::Failed(_) => RayEnd::Failed,
+        }
+    }
+
+    /// Tests a curved step, given as `θ ↦ world position` on `[0, 1]`, against the scene: the
+    /// chord is split in halves until it lies within ε of the curve, nearest half first.
+    fn curved(&self, world: &World, region: Region, point: &dyn Fn(f64) -> Vec3) -> Option<ChordHit> {
+        match self.intersection {
+            Intersection::Chord => self.curved_span(world, region, point, (0.0, point(0.0)), (1.0, point(1.0)), 0),
+            Intersection::Poster => self.sign_change(world, region, point),
+        }
+    }
+
+    /// The poster's Algorithm 1: an object is hit in a step when its surface function changes
+    /// sign between the step's ends; the crossing is bisected on the curved step until the
+    /// point is within ε of the surface. A thin object crossed between two step ends with the
+    /// same sign is missed, as in the poster.
+    fn sign_change(&self, world: &World, region: Region, point: &dyn Fn(f64) -> Vec3) -> Option<ChordHit> {
+        let (a, b) = (point(0.0), point(1.0));
+        let mut best: Option<ChordHit> = None;
+        for (index, object) in world.objects(region).iter().enumerate() {
+            let f = |p: Vec3| object.shape.surface_function(p);
+            let (fa, fb) = (f(a), f(b));
+            if fa.signum() == fb.signum() || !fa.is_finite() || !fb.is_finite() {
+                continue;
+            }
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                let fm = f(point(mid));
+                if fm.abs() < self.epsilon && (hi - lo) < 1e-3 {
+                    break;
+                }
+                if fm.signum() == fa.signum() {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            if best.is_some_and(|h| h.theta <= lo) {
+                continue;
+            }
+            // The surface record comes from the short chord across the bracketed crossing.
+            let (p, q) = (point(lo), point(hi));
+            let len = (q - p).length();
+            let mut chord = Ray::new(p, (q - p) / len, len);
+            if !(len > 0.0) {
+                continue;
+            }
+            chord.t_max = len;
+            if let Some(t) = object.shape.intersect(&chord) {
+                best = Some(ChordHit { object: index, chord, t, theta: lo + (hi - lo) * t / len });
+            }
+        }
+        best
+    }
+
+    fn curved_span(
+        &self,
+        world: &World,
+        region: Region,
+        point: &dyn Fn(f64) -> Vec3,
+        (ta, a): (f64, Vec3),
+        (tb, b): (f64, Vec3),
+        depth: u32,
+    ) -> Option<ChordHit> {
+        let tm = 0.5 * (ta + tb);
+        let m = point(tm);
+        let sagitta = (m - 0.5 * (a + b)).length();
+        if sagitta > self.epsilon && depth < 24 {
+            return self
+                .curved_span(world, region, point, (ta, a), (tm, m), depth + 1)
+                .or_else(|| self.curved_span(world, region, point, (tm, m), (tb, b), depth + 1));
+        }
+        let len = (b - a).length();
+        if !(len > 0.0) {
+            return None;
+        }
+        let chord = Ray::new(a, (b - a) / len, len);
+        let (object, t) = world.intersect(region, &chord)?;
+        Some(ChordHit { object, chord, t, theta: ta + (tb - ta) * t / len })
+    }
+
+    fn hamiltonian(&self, metric: &Kerr, world: &World, region: Region, origin: Vec3, direction: Vec3) -> RayEnd {
+        let Some(x) = metric.world_to_chart(region, origin.to_array(), 0.0) else { return RayEnd::Failed };
+        let Ok(frame) = Tetrad::local_observer(metric, &x) else { return RayEnd::Captured };
+        let p = frame.backward_momentum(&metric.metric(&x), direction.to_array(), 1.0);
+        let mut arrival: Option<(ChordHit, State)> = None;
+        let trace = HamiltonianTracer::new(metric, State { x, p }, self.trace).run(|step: &HamiltonianStep| {
+            let position = |theta: f64| {
+                let s = step.at(theta);
+                Vec3::new(s.x[1], s.x[2], s.x[3])
+            };
+            match self.curved(world, region, &position) {
+                Some(found) => {
+                    arrival = Some((found, step.at(found.theta)));
+                    Visit::Stop
+                }
+                None => Visit::Continue,
+            }
+        });
+        match trace.fate {
+            Fate::Stopped => {
+                let Some((found, state)) = arrival else { return RayEnd::Failed };
+                let Ok(local) = Tetrad::local_observer(metric, &state.x) else { return RayEnd::Captured };
+                let (n, energy) = local.backward_direction(&state.p);
+                let hit = world.surface(region, found.object, &found.chord, found.t);
+                let direction = Vec3::from_array(n);
+                RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy })
+            }
+            // A static observer at infinity measures the conserved `p_t` of the backward ray.
+            Fate::Escaped { direction } | Fate::Traversed { direction } => {
+                RayEnd::Escaped { region, direction: Vec3::from_array(direction), traversed: false, energy: p[0] }
+            }
+            Fate::Captured => RayEnd::Captured,
+            Fate::Failed(_) => RayEnd::Failed,
+        }
+    }
+}
+
+/// A chord that hit an object: the chord, the distance along it, and the fraction of the step.
+#[derive(Clone, Copy, Debug)]
+struct ChordHit {
+    object: usize,
+    chord: Ray,
+    t: f64,
+    theta: f64,
+}
+
+/// Lapse `α = √(−g_tt)` of the static observer at areal radius `rho`: energies measured by
+/// static observers scale as `1/α` along a ray.
+pub trait Lapse {
+    fn lapse(&self, rho: f64) -> f64;
+}
+
+impl Lapse for Schwarzschild {
+    fn lapse(&self, rho: f64) -> f64 {
+        (1.0 - 2.0 * self.mass / rho).max(0.0).sqrt()
+    }
+}
+
+impl Lapse for Ellis {
+    fn lapse(&self, _rho: f64) -> f64 {
+        1.0
+    }
+}
+
+fn other(region: Region) -> Region {
+    match region {
+        Region::Upper => Region::Lower,
+        Region::Lower => Region::Upper,
+    }
+}
+
+/// Flat space: one straight chord to infinity.
+fn straight(world: &World, region: Region, origin: Vec3, direction: Vec3) -> RayEnd {
+    match world.intersect(region, &Ray::new(origin, direction, f64::INFINITY)) {
+        Some((object, dist)) => {
+            let hit = world.surface(region, object, &Ray::new(origin, direction, dist), dist);
+            RayEnd::Hit(Arrival { region, object, hit, direction, distance: dist, energy: 1.0 })
+        }
+        None => RayEnd::Escaped { region, direction, traversed: false, energy: 1.0 },
+    }
+}
+
+fn kerr_local_normal(metric: &Kerr, region: Region, p: Vec3, n: Vec3) -> Vec3 {
+    let Some(x) = metric.world_to_chart(region, p.to_array(), 0.0) else { return n };
+    let Ok(frame) = Tetrad::local_observer(metric, &x) else { return n };
+    // Frame components of the gradient covector (0, n): n_(a) = e_(a)^i n_i.
+    let c = |a: usize| frame.e[a][1] * n.x + frame.e[a][2] * n.y + frame.e[a][3] * n.z;
+    Vec3::new(c(1), c(2), c(3)).normalize()
+}

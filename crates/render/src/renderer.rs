@@ -1,0 +1,117 @@
+//! Renders a scene into a film: tiles in parallel, every sample with its own random stream keyed
+//! by (seed, pixel, sample), so the image is bit-identical whatever the thread count; stoppable
+//! at any tile boundary with everything finished so far kept.
+
+use crate::film::{Film, FilmTile, TileBounds};
+use crate::integrator::{PathIntegrator, PathStats};
+use crate::propagator::Propagator;
+use crate::sampling::Rng;
+use crate::scene::Scene;
+use crate::settings::IntegratorKind;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::Mutex;
+use std::time::Instant;
+
+/// Pixels per tile side.
+const TILE: u32 = 16;
+
+/// What a render did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    pub paths: PathStats,
+    /// Camera samples taken.
+    pub samples: u64,
+    /// Samples whose radiance was not finite (rejected by the film and counted here).
+    pub nan_samples: u64,
+    pub seconds: f64,
+    /// Tiles finished out of the total (less than total after an interruption).
+    pub tiles_done: u64,
+    pub tiles_total: u64,
+}
+
+/// The propagator a scene needs; the escape radius encloses every object.
+pub fn propagator(scene: &Scene) -> Propagator {
+    use spacetime::Region;
+    let radius = [Region::Upper, Region::Lower]
+        .iter()
+        .map(|&r| scene.world.bounds(r))
+        .filter(|b| !b.is_empty())
+        .map(|b| b.min.abs().max(b.max.abs()).length())
+        .chain([scene.camera.position.length()])
+        .fold(0.0f64, f64::max);
+    Propagator::new(scene.spacetime, radius.max(1e-9), scene.settings.geodesic_rtol, scene.settings.intersection)
+}
+
+/// Sub-pixel position `[0, 1)²` of sample `s` of `spp`: a jittered `k × k` grid when `spp = k²`
+/// (as the poster used), otherwise `spp` strata in x with uniform y.
+fn stratified(s: u32, spp: u32, rng: &mut Rng) -> [f64; 2] {
+    let k = (f64::from(spp)).sqrt() as u32;
+    let [a, b] = rng.next_2d();
+    if k * k == spp {
+        [(f64::from(s % k) + a) / f64::from(k), (f64::from(s / k) + b) / f64::from(k)]
+    } else {
+        [(f64::from(s) + a) / f64::from(spp), b]
+    }
+}
+
+/// Renders one tile.
+fn render_tile(scene: &Scene, integrator: &PathIntegrator<'_>, bounds: TileBounds) -> (FilmTile, PathStats, u64) {
+    let settings = &scene.settings;
+    let mut tile = FilmTile::new(bounds);
+    let mut stats = PathStats::default();
+    let mut samples = 0;
+    for (x, y) in bounds.pixels() {
+        let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
+        for s in 0..settings.spp {
+            let mut rng = Rng::for_sample(settings.seed, pixel, u64::from(s));
+            let fs = settings.filter.sample(stratified(s, settings.spp, &mut rng));
+            let film_x = f64::from(x) + 0.5 + fs.offset[0];
+            let film_y = f64::from(y) + 0.5 + fs.offset[1];
+            let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, rng.next_2d());
+            let l = integrator.radiance(scene.camera.region, ray.origin, ray.direction, &mut rng, &mut stats);
+            tile.add_sample(x, y, l, fs.weight);
+            samples += 1;
+        }
+    }
+    (tile, stats, samples)
+}
+
+/// Renders `scene` on the current rayon pool. `cancel` stops it between tiles; `progress` is
+/// told `(tiles done, tiles total)` after every tile.
+pub fn render(scene: &Scene, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> (Film, RenderStats) {
+    let start = Instant::now();
+    let settings = &scene.settings;
+    let propagator = propagator(scene);
+    let integrator = PathIntegrator::new(&scene.world, &propagator, settings.max_depth, settings.integrator == IntegratorKind::BruteForce);
+    let film = Mutex::new(Film::new(settings.width, settings.height));
+    let tiles = film.lock().map(|f| f.tiles(TILE)).unwrap_or_default();
+    let total = tiles.len() as u64;
+    let done = AtomicU64::new(0);
+    let totals = Mutex::new((PathStats::default(), 0u64));
+    tiles.into_par_iter().for_each(|bounds| {
+        if cancel.load(Ordering::Relaxed) {
+            return;
+        }
+        let (tile, stats, samples) = render_tile(scene, &integrator, bounds);
+        if let Ok(mut f) = film.lock() {
+            f.merge_tile(tile);
+        }
+        if let Ok(mut t) = totals.lock() {
+            t.0 += stats;
+            t.1 += samples;
+        }
+        progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+    });
+    let film = film.into_inner().unwrap_or_else(|e| e.into_inner());
+    let (paths, samples) = totals.into_inner().unwrap_or_else(|e| e.into_inner());
+    let stats = RenderStats {
+        paths,
+        samples,
+        nan_samples: film.nan_samples(),
+        seconds: start.elapsed().as_secs_f64(),
+        tiles_done: done.load(Ordering::Relaxed),
+        tiles_total: total,
+    };
+    (film, stats)
+}

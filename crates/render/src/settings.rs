@@ -1,0 +1,59 @@
+//! How to render, kept apart from the algorithms that read it (Tungsten's habit).
+
+use crate::film::{Filter, ToneMap};
+
+/// Which light-transport algorithm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// Unidirectional path tracing with next-event estimation and MIS wherever light can be
+    /// connected to exactly (flat space); BSDF sampling alone elsewhere.
+    Path,
+    /// Path tracing that only finds lights by hitting them: the unbiased reference.
+    BruteForce,
+}
+
+/// How a geodesic step is tested against the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Intersection {
+    /// Each step's chord is tested against the BVH, subdivided where the step bends more than
+    /// the tolerance, and hits are refined on the curved step.
+    Chord,
+    /// The poster's Algorithm 1: sign change of the surface function between step ends, then
+    /// bisection (Ayush & Chaudhuri 2017); kept to reproduce its figures.
+    Poster,
+}
+
+/// Everything about a render that is not the scene itself.
+#[derive(Clone, Debug)]
+pub struct RenderSettings {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Longest path, in surface interactions.
+    pub max_depth: u32,
+    pub seed: u64,
+    pub integrator: IntegratorKind,
+    pub intersection: Intersection,
+    pub filter: Filter,
+    pub tonemap: ToneMap,
+    /// Relative tolerance of the adaptive geodesic integrator.
+    pub geodesic_rtol: f64,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            width: 640,
+            height: 480,
+            spp: 64,
+            max_depth: 8,
+            seed: 0,
+            integrator: IntegratorKind::Path,
+            intersection: Intersection::Chord,
+            filter: Filter::default(),
+            tonemap: ToneMap::default(),
+            geodesic_rtol: 1e-8,
+        }
+    }
+}

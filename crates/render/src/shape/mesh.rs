@@ -1,0 +1,525 @@
+//! Triangle meshes: vertex data shared by the mesh's triangles, and Wavefront OBJ loading.
+//!
+//! Vertex data is baked into world space when the mesh is built (pbrt-v4 §6.5.1): one transform
+//! per vertex at load time instead of two per ray per triangle, and the BVH sees world bounds.
+//! A [`Triangle`] is an `Arc` to the mesh plus an index.
+
+use super::{Shape, Triangle};
+use crate::geometry::Vec3;
+use crate::transform::Transform;
+use std::fmt;
+use std::fs::File;
+use std::io::{self, BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// World-space vertex data of a triangle mesh. Invariants, checked by [`TriangleMesh::new`]:
+/// every index is in range, positions and normals are finite, attribute arrays have one entry per
+/// vertex, and (with normals) each triangle's winding agrees with its vertex normals.
+#[derive(Debug)]
+pub struct TriangleMesh {
+    positions: Vec<Vec3>,
+    /// Unit length, or zero where the source gave a zero normal (shading then uses `ng`).
+    normals: Option<Vec<Vec3>>,
+    uvs: Option<Vec<[f64; 2]>>,
+    indices: Vec<[u32; 3]>,
+}
+
+/// What is wrong with a mesh's data.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MeshDefect {
+    /// No triangle with non-zero area.
+    NoTriangles,
+    /// A triangle refers to a vertex that does not exist.
+    IndexOutOfRange { triangle: usize, index: u32, vertex_count: usize },
+    /// A vertex position is NaN or infinite.
+    NonFiniteVertex { vertex: usize, position: Vec3 },
+    /// A vertex normal is NaN or infinite.
+    NonFiniteNormal { vertex: usize, normal: Vec3 },
+    /// A per-vertex attribute array does not have one entry per vertex.
+    AttributeCount { attribute: &'static str, count: usize, vertex_count: usize },
+    /// The transform is not finite or not invertible.
+    InvalidTransform,
+    /// More vertices than 32-bit indices can address.
+    TooManyVertices { count: usize },
+}
+
+impl fmt::Display for MeshDefect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NoTriangles => write!(f, "contains no triangles (with non-zero area)"),
+            Self::IndexOutOfRange { triangle, index, vertex_count } => write!(
+                f,
+                "triangle {triangle} refers to vertex {index}, but there are only {vertex_count} \
+                 vertices (0-based)"
+            ),
+            Self::NonFiniteVertex { vertex, position } => {
+                write!(f, "vertex {vertex} has a non-finite position {position}")
+            }
+            Self::NonFiniteNormal { vertex, normal } => {
+                write!(f, "vertex {vertex} has a non-finite normal {normal}")
+            }
+            Self::AttributeCount { attribute, count, vertex_count } => {
+                write!(f, "{count} {attribute} for {vertex_count} vertices")
+            }
+            Self::InvalidTransform => write!(f, "transform is not finite or not invertible"),
+            Self::TooManyVertices { count } => {
+                write!(f, "has {count} vertices, more than 32-bit indices can address")
+            }
+        }
+    }
+}
+
+impl std::error::Error for MeshDefect {}
+
+impl TriangleMesh {
+    /// A mesh from world-space data: `positions`, optional per-vertex `normals` (normalised here)
+    /// and `uvs`, and counter-clockwise triangles `indices`. With normals, a triangle whose winding
+    /// disagrees with the sum of its vertex normals is reordered, so that its cross-product normal
+    /// `ng` points to the side the normals call outside.
+    pub fn new(
+        positions: Vec<Vec3>,
+        normals: Option<Vec<Vec3>>,
+        uvs: Option<Vec<[f64; 2]>>,
+        mut indices: Vec<[u32; 3]>,
+    ) -> Result<Self, MeshDefect> {
+        let vertex_count = positions.len();
+        if indices.is_empty() {
+            return Err(MeshDefect::NoTriangles);
+        }
+        for (triangle, tri) in indices.iter().enumerate() {
+            if let Some(&index) = tri.iter().find(|&&i| i as usize >= vertex_count) {
+                return Err(MeshDefect::IndexOutOfRange { triangle, index, vertex_count });
+            }
+        }
+        if let Some((vertex, &position)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+            return Err(MeshDefect::NonFiniteVertex { vertex, position });
+        }
+        let normals = match normals {
+            None => None,
+            Some(n) if n.len() != vertex_count => {
+                return Err(MeshDefect::AttributeCount { attribute: "normals", count: n.len(), vertex_count })
+            }
+            Some(n) => {
+                if let Some((vertex, &normal)) = n.iter().enumerate().find(|(_, n)| !n.is_finite()) {
+                    return Err(MeshDefect::NonFiniteNormal { vertex, normal });
+                }
+                Some(n.into_iter().map(Vec3::normalize_or_zero).collect::<Vec<_>>())
+            }
+        };
+        if let Some(uv) = &uvs {
+            if uv.len() != vertex_count {
+                return Err(MeshDefect::AttributeCount { attribute: "uvs", count: uv.len(), vertex_count });
+            }
+        }
+        if let Some(n) = &normals {
+            for tri in &mut indices {
+                let [a, b, c] = tri.map(|i| i as usize);
+                let winding = (positions[b] - positions[a]).cross(positions[c] - positions[a]);
+                if winding.dot(n[a] + n[b] + n[c]) < 0.0 {
+                    tri.swap(1, 2);
+                }
+            }
+        }
+        Ok(Self { positions, normals, uvs, indices })
+    }
+
+    /// One [`Shape::Triangle`] per triangle with non-zero area (degenerate triangles can never be
+    /// hit and have no normal, so they are left out).
+    pub fn shapes(mesh: &Arc<TriangleMesh>) -> Vec<Shape> {
+        (0..mesh.indices.len())
+            .filter(|&i| {
+                let [a, b, c] = mesh.indices[i].map(|k| mesh.positions[k as usize]);
+                (b - a).cross(c - a).normalize_or_zero() != Vec3::ZERO
+            })
+            .filter_map(|i| u32::try_from(i).ok())
+            .map(|i| Shape::Triangle(Triangle::new(Arc::clone(mesh), i)))
+            .collect()
+    }
+
+    pub fn positions(&self) -> &[Vec3] {
+        &self.positions
+    }
+
+    pub fn normals(&self) -> Option<&[Vec3]> {
+        self.normals.as_deref()
+    }
+
+    pub fn uvs(&self) -> Option<&[[f64; 2]]> {
+        self.uvs.as_deref()
+    }
+
+    pub fn indices(&self) -> &[[u32; 3]] {
+        &self.indices
+    }
+}
+
+/// Why an OBJ file could not be loaded. Every variant names the file.
+#[derive(Debug)]
+pub enum MeshError {
+    /// The file could not be opened (missing, unreadable, a directory…).
+    Open { path: PathBuf, source: io::Error },
+    /// The OBJ parser rejected the file; `message` is tobj's.
+    Parse { path: PathBuf, message: String },
+    /// A face refers to a vertex, texture coordinate or normal that does not exist.
+    FaceIndex { path: PathBuf, line: usize, index: i64, attribute: &'static str, count: usize },
+    /// The parsed data is unusable.
+    Invalid { path: PathBuf, defect: MeshDefect },
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Open { path, source } => {
+                write!(f, "cannot open mesh file '{}': {source}", path.display())
+            }
+            Self::Parse { path, message } => {
+                write!(f, "cannot parse OBJ file '{}': {message}", path.display())
+            }
+            Self::FaceIndex { path, line, index, attribute, count } => write!(
+                f,
+                "OBJ file '{}', line {line}: face refers to {attribute} {index}, but the file \
+                 defines {count} {attribute} entries (1-based; negative counts back)",
+                path.display()
+            ),
+            Self::Invalid { path, defect } => {
+                write!(f, "mesh file '{}': {defect}", path.display())
+            }
+        }
+    }
+}
+
+impl std::error::Error for MeshError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Open { source, .. } => Some(source),
+            Self::Invalid { defect, .. } => Some(defect),
+            _ => None,
+        }
+    }
+}
+
+/// Loads a Wavefront OBJ file as triangles, with `transform` (object to world) baked into the
+/// vertex data. Polygons are triangulated as fans; points and lines are ignored; every object and
+/// group of the file goes into one shared [`TriangleMesh`]. Normals and uvs are kept when every
+/// vertex has them. Materials (`mtllib`, `usemtl`) are ignored: the scene file assigns materials.
+/// A mirroring transform reverses the winding so that normals still point outward.
+pub fn load_obj(path: &Path, transform: &Transform) -> Result<Vec<Shape>, MeshError> {
+    let invalid = |defect| MeshError::Invalid { path: path.to_path_buf(), defect };
+    let file = File::open(path).map_err(|source| MeshError::Open { path: path.to_path_buf(), source })?;
+    // Other tobj features (merging, reordering) add fields; their defaults (off) are wanted.
+    #[allow(clippy::needless_update)]
+    let options = tobj::LoadOptions {
+        single_index: true,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    // tobj indexes and unwraps in a few places; a malformed file must be an error, not a crash.
+    let parsed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        tobj::load_obj_buf(&mut BufReader::new(file), &options, |_| Err(tobj::LoadError::GenericFailure))
+    }));
+    let models = match parsed {
+        Ok(Ok((models, _materials))) => models,
+        Ok(Err(e)) => return Err(parse_error(path, e)),
+        Err(_) => {
+            return Err(MeshError::Parse {
+                path: path.to_path_buf(),
+                message: "the OBJ parser failed on malformed input".to_string(),
+            })
+        }
+    };
+
+    let (mut positions, mut normals, mut uvs, mut indices) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut all_normals, mut all_uvs) = (true, true);
+    for model in &models {
+        let m = &model.mesh;
+        let base = positions.len();
+        let count = m.positions.len() / 3;
+        let raw =
+            |v: &[f32], i: usize| Vec3::new(f64::from(v[3 * i]), f64::from(v[3 * i + 1]), f64::from(v[3 * i + 2]));
+        for i in 0..count {
+            let p = raw(&m.positions, i);
+            if !p.is_finite() {
+                return Err(invalid(MeshDefect::NonFiniteVertex { vertex: base + i, position: p }));
+            }
+            positions.push(p);
+        }
+        all_normals &= m.normals.len() == m.positions.len();
+        if all_normals {
+            normals.extend((0..count).map(|i| raw(&m.normals, i)));
+        }
+        all_uvs &= m.texcoords.len() == 2 * count;
+        if all_uvs {
+            uvs.extend(m.texcoords.chunks_exact(2).map(|t| [f64::from(t[0]), f64::from(t[1])]));
+        }
+        let base = u32::try_from(base).map_err(|_| invalid(MeshDefect::TooManyVertices { count: base + count }))?;
+        indices.extend(m.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]].map(|i| i.saturating_add(base))));
+    }
+
+    if !transform.is_finite() || transform.linear().determinant() == 0.0 {
+        return Err(invalid(MeshDefect::InvalidTransform));
+    }
+    for p in &mut positions {
+        *p = transform.point(*p);
+    }
+    for n in &mut normals {
+        *n = transform.normal(*n);
+    }
+    if transform.swaps_handedness() {
+        for tri in &mut indices {
+            tri.swap(1, 2);
+        }
+    }
+    let mesh = TriangleMesh::new(positions, all_normals.then_some(normals), all_uvs.then_some(uvs), indices)
+        .map_err(invalid)?;
+    let shapes = TriangleMesh::shapes(&Arc::new(mesh));
+    if shapes.is_empty() {
+        return Err(invalid(MeshDefect::NoTriangles));
+    }
+    Ok(shapes)
+}
+
+/// tobj's error, made precise where tobj is vague: for an out-of-range face index, find the line.
+fn parse_error(path: &Path, e: tobj::LoadError) -> MeshError {
+    use tobj::LoadError as E;
+    if matches!(e, E::FaceVertexOutOfBounds | E::FaceTexCoordOutOfBounds | E::FaceNormalOutOfBounds) {
+        if let Some(found) = find_bad_face_index(path) {
+            return found;
+        }
+    }
+    MeshError::Parse { path: path.to_path_buf(), message: e.to_string() }
+}
+
+/// Re-reads the file to find the first face index that refers past the data: absolute indices
+/// (1-based) against the file's totals, relative (negative) ones against the entries so far.
+fn find_bad_face_index(path: &Path) -> Option<MeshError> {
+    const ATTRIBUTES: [(&str, &str); 3] = [("v", "vertex"), ("vt", "texture coordinate"), ("vn", "normal")];
+    let lines: Vec<String> = BufReader::new(File::open(path).ok()?).lines().map_while(Result::ok).collect();
+    let mut totals = [0usize; 3];
+    for line in &lines {
+        if let Some(k) = line.split_whitespace().next().and_then(|w| ATTRIBUTES.iter().position(|a| a.0 == w)) {
+            totals[k] += 1;
+        }
+    }
+    let mut so_far = [0usize; 3];
+    for (number, line) in lines.iter().enumerate() {
+        let mut words = line.split_whitespace();
+        let keyword = words.next();
+        if let Some(k) = keyword.and_then(|w| ATTRIBUTES.iter().position(|a| a.0 == w)) {
+            so_far[k] += 1;
+            continue;
+        }
+        if !matches!(keyword, Some("f")) {
+            continue;
+        }
+        for vertex in words {
+            for (k, part) in vertex.split('/').enumerate().take(3) {
+                let Ok(index) = part.parse::<i64>() else {
+                    continue;
+                };
+                // tobj ignores texture and normal indices of 0, and all of them in a file that
+                // defines none of that attribute.
+                if k > 0 && (index == 0 || totals[k] == 0) {
+                    continue;
+                }
+                let ok = if index > 0 {
+                    (index as u64) <= totals[k] as u64
+                } else {
+                    index < 0 && index.unsigned_abs() <= so_far[k] as u64
+                };
+                if !ok {
+                    return Some(MeshError::FaceIndex {
+                        path: path.to_path_buf(),
+                        line: number + 1,
+                        index,
+                        attribute: ATTRIBUTES[k].1,
+                        count: if index > 0 { totals[k] } else { so_far[k] },
+                    });
+                }
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Ray;
+
+    /// A file in the system temp directory, unique to this test and process, removed on drop.
+    struct TempFile(PathBuf);
+
+    impl TempFile {
+        fn new(name: &str, contents: &str) -> Self {
+            let path = std::env::temp_dir().join(format!("nullpath-mesh-{}-{name}.obj", std::process::id()));
+            std::fs::write(&path, contents).unwrap();
+            Self(path)
+        }
+    }
+
+    impl Drop for TempFile {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_file(&self.0);
+        }
+    }
+
+    /// A unit cube [0,1]³ with quads, per-face normals and uvs.
+    const CUBE: &str = "\
+# unit cube
+mtllib missing.mtl
+o cube
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+v 1 1 1
+v 0 1 1
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+vn 0 0 -1
+vn 0 0 1
+vn 0 -1 0
+vn 0 1 0
+vn -1 0 0
+vn 1 0 0
+usemtl white
+f 1/1/1 4/2/1 3/3/1 2/4/1
+f 5/1/2 6/2/2 7/3/2 8/4/2
+f 1/1/3 2/2/3 6/3/3 5/4/3
+f 4/1/4 8/2/4 7/3/4 3/4/4
+f 1/1/5 5/2/5 8/3/5 4/4/5
+f 2/1/6 3/2/6 7/3/6 6/4/6
+";
+
+    fn cube_bounds(shapes: &[Shape]) -> crate::geometry::Aabb {
+        shapes.iter().fold(crate::geometry::Aabb::EMPTY, |b, s| b.union(&s.bounds()))
+    }
+
+    #[test]
+    fn loads_a_cube_with_normals_and_uvs() {
+        let file = TempFile::new("cube", CUBE);
+        let shapes = load_obj(&file.0, &Transform::IDENTITY).unwrap();
+        assert_eq!(shapes.len(), 12);
+        assert!((shapes.iter().map(Shape::area).sum::<f64>() - 6.0).abs() < 1e-12);
+        // Every outward ray from the centre leaves through a face whose normal points outward.
+        let mut rng = crate::sampling::Rng::new(9);
+        for _ in 0..1000 {
+            let dir = crate::sampling::uniform_sphere(rng.next_2d());
+            let ray = Ray::new(Vec3::splat(0.5), dir, 10.0);
+            let (t, s) = shapes
+                .iter()
+                .filter_map(|s| s.intersect(&ray).map(|t| (t, s)))
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .unwrap();
+            let h = s.surface(&ray, t);
+            assert!(h.ng.dot(dir) > 0.0 && h.ns.dot(h.ng) > 0.99);
+            assert!(h.uv.iter().all(|x| (-1e-12..=1.0 + 1e-12).contains(x)));
+        }
+    }
+
+    /// The cube without texture coordinates and normals.
+    fn positions_only(obj: &str) -> String {
+        let mut out = String::new();
+        for line in obj.lines().filter(|l| !l.starts_with("vt") && !l.starts_with("vn")) {
+            if let Some(face) = line.strip_prefix("f ") {
+                let corners: Vec<&str> = face.split_whitespace().filter_map(|c| c.split('/').next()).collect();
+                out += &format!("f {}\n", corners.join(" "));
+            } else {
+                out += line;
+                out += "\n";
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn transform_is_baked_in_and_mirroring_keeps_normals_outward() {
+        let file = TempFile::new("mirrored", &positions_only(CUBE));
+        let t =
+            Transform::scale(Vec3::new(-2.0, 1.0, 1.0)).unwrap().then(&Transform::translate(Vec3::new(5.0, 0.0, 0.0)));
+        let shapes = load_obj(&file.0, &t).unwrap();
+        let b = cube_bounds(&shapes);
+        assert!((b.min - Vec3::new(3.0, 0.0, 0.0)).length() < 1e-12);
+        assert!((b.max - Vec3::new(5.0, 1.0, 1.0)).length() < 1e-12);
+        for s in &shapes {
+            let Shape::Triangle(tri) = s else { unreachable!() };
+            assert!(tri.mesh().normals().is_none() && tri.mesh().uvs().is_none());
+            let (p, n) = s.sample_area([0.3, 0.3]);
+            assert!(n.dot(p - Vec3::new(4.0, 0.5, 0.5)) > 0.0, "outward after mirroring");
+        }
+    }
+
+    #[test]
+    fn missing_file_names_the_file() {
+        let path = std::env::temp_dir().join("nullpath-definitely-missing.obj");
+        let e = load_obj(&path, &Transform::IDENTITY).unwrap_err();
+        let message = e.to_string();
+        assert!(matches!(e, MeshError::Open { .. }));
+        assert!(message.contains("nullpath-definitely-missing.obj") && message.contains("cannot open"), "{message}");
+    }
+
+    #[test]
+    fn garbage_is_an_error_not_a_panic() {
+        let file = TempFile::new("garbage", "this is not\n an obj file \u{1}\u{2}\n");
+        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        assert!(e.to_string().contains("contains no triangles"), "{e}");
+        let file = TempFile::new("bad-number", "v 1 2 banana\nv 0 0 0\nv 1 1 1\nf 1 2 3\n");
+        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        assert!(matches!(e, MeshError::Parse { .. }), "{e}");
+        assert!(e.to_string().contains("position parse error") && e.to_string().contains("bad-number"), "{e}");
+        let file = TempFile::new("binary", "v 1 2 3\n\u{0}\u{ff}\u{fe}f 1 1 1\nvt 0\n");
+        assert!(load_obj(&file.0, &Transform::IDENTITY).is_err());
+    }
+
+    #[test]
+    fn out_of_range_index_points_at_the_line() {
+        let file = TempFile::new("range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        let message = e.to_string();
+        assert!(matches!(e, MeshError::FaceIndex { line: 5, index: 9, count: 3, .. }), "{message}");
+        assert!(message.contains("line 5") && message.contains("vertex 9"), "{message}");
+        let file = TempFile::new("relative", "v 0 0 0\nv 1 0 0\nf -1 -2 -4\n");
+        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        assert!(matches!(e, MeshError::FaceIndex { line: 3, index: -4, count: 2, .. }), "{e}");
+        let file = TempFile::new("normal-range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n");
+        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        assert!(matches!(e, MeshError::FaceIndex { attribute: "normal", index: 2, .. }), "{e}");
+    }
+
+    #[test]
+    fn non_finite_vertex_and_degenerate_meshes_are_rejected() {
+        let file = TempFile::new("nan", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        assert!(e.to_string().contains("non-finite position"), "{e}");
+        let file = TempFile::new("flat", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        assert!(e.to_string().contains("no triangles"), "{e}");
+        assert_eq!(
+            TriangleMesh::new(vec![Vec3::ZERO], None, None, vec![[0, 0, 1]]).unwrap_err(),
+            MeshDefect::IndexOutOfRange { triangle: 0, index: 1, vertex_count: 1 }
+        );
+        assert!(matches!(
+            TriangleMesh::new(vec![Vec3::ZERO; 3], Some(vec![Vec3::Z]), None, vec![[0, 1, 2]]),
+            Err(MeshDefect::AttributeCount { attribute: "normals", count: 1, vertex_count: 3 })
+        ));
+    }
+
+    #[test]
+    fn vertex_normals_decide_the_outward_side() {
+        let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
+        // Clockwise as listed, but the normals say +z is outside.
+        let mesh = TriangleMesh::new(positions, Some(vec![Vec3::Z * 3.0; 3]), None, vec![[0, 2, 1]]).unwrap();
+        let shapes = TriangleMesh::shapes(&Arc::new(mesh));
+        let ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z, 2.0);
+        let h = shapes[0].surface(&ray, shapes[0].intersect(&ray).unwrap());
+        assert_eq!(h.ng, Vec3::Z);
+        assert_eq!(h.ns, Vec3::Z, "normalised");
+    }
+}

@@ -1,0 +1,577 @@
+//! # Star field (`type = "stars"`)
+//!
+//! A procedural night sky that stays sharp at any resolution and under any magnification by a lens:
+//! every star is a small disc of finite angular radius with constant radiance over it, so a camera
+//! resolves it once zoomed in far enough and a gravitational lens stretches it into arcs like any other
+//! extended source. A star's radiance times its disc's solid angle is its flux.
+//!
+//! Stars are scattered uniformly over the sphere (a Poisson process of rate `density` per steradian),
+//! deterministically from `seed`:
+//! - the sphere is cut into the cells of a cube map (`N × N` per face); a cell holds a Poisson number of
+//!   stars with mean `density × (its exact solid angle)`, placed in it uniformly *in solid angle*
+//!   (rejection against the cube map's area distortion `(1 + x² + y²)^(−3/2)`), all drawn from a random
+//!   stream keyed by the seed and the cell index — so any direction can be looked up on its own, in any
+//!   order, from any thread;
+//! - a lookup visits the cell the direction falls in and, near a cell border, its neighbours (across cube
+//!   faces too), which covers every disc that can reach it because cells are at least 4× wider than the
+//!   search margin;
+//! - fluxes follow the power law of uniformly distributed sources in Euclidean space,
+//!   `N(> F) ∝ F^(−3/2)` (the classic "log N – log S" counts), truncated to a range of 4096 (9 magnitudes)
+//!   and scaled so the *mean* flux is `brightness`; the sky's average star radiance is therefore
+//!   `density × brightness`;
+//! - a star's angular radius grows slowly with its flux, `r = star_radius · (F/F_min)^(1/6)`, from
+//!   `star_radius` for the faintest to 4× that for the brightest;
+//! - colours are blackbody-ish: temperature log-uniform in 3000–12000 K, tinted by the ratio of Planck's
+//!   law at 610, 550 and 465 nm to a 6504 K (D65-like) white, normalised to unit luminance.
+//!
+//! Cost: a lookup generates the stars of about one cell (`≈ 2` on average when `density` allows small
+//! enough cells; up to `density · 4π / (6 N²)` when the star size forces big cells).
+//!
+//! | parameter         | type   | default     | meaning                                                   |
+//! |-------------------|--------|-------------|-----------------------------------------------------------|
+//! | `density`         | number | 1000        | mean stars per steradian (the naked-eye sky: ≈ 500)        |
+//! | `brightness`      | number | 2e-5        | mean flux per star (radiance × sr)                        |
+//! | `seed`            | int    | 0           | which sky                                                 |
+//! | `star_radius_deg` | number | 0.05        | angular radius of the faintest stars, `(0, 2]`            |
+//! | `background`      | colour | `[0, 0, 0]` | faint radiance between the stars                          |
+//!
+//! ```toml
+//! [sky]
+//! type = "stars"
+//! density = 2000
+//! brightness = 2e-5
+//! seed = 7
+//! star_radius_deg = 0.05
+//! background = [0.002, 0.002, 0.004]
+//! ```
+
+use crate::color::{luminance, Rgb};
+use crate::geometry::Vec3;
+use crate::sampling::Rng;
+use std::f64::consts::PI;
+
+/// Slope of the cumulative flux counts, `N(> F) ∝ F^(−γ)`: γ = 3/2 for sources uniform in Euclidean space.
+const FLUX_SLOPE: f64 = 1.5;
+/// Brightest over faintest flux.
+const FLUX_RANGE: f64 = 4096.0;
+/// `r ∝ F^RADIUS_EXPONENT`; with [`FLUX_RANGE`] the brightest stars are 4096^(1/6) = 4× the faintest.
+const RADIUS_EXPONENT: f64 = 1.0 / 6.0;
+const MAX_RADIUS_FACTOR: f64 = 4.0;
+/// Mean stars per cell to aim for when choosing the cube map's resolution.
+const STARS_PER_CELL: f64 = 2.0;
+/// Refuse parameters that would put more stars than this in one cell (slow lookups).
+const MAX_STARS_PER_CELL: f64 = 500.0;
+/// Temperature range (K), log-uniform.
+const T_MIN: f64 = 3000.0;
+const T_MAX: f64 = 12000.0;
+
+/// The parameters of a star field as a scene gives them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StarFieldParams {
+    /// Mean number of stars per steradian.
+    pub density: f64,
+    /// Mean flux of a star (radiance × steradian).
+    pub brightness: f64,
+    pub seed: u64,
+    /// Angular radius of the faintest stars, in degrees.
+    pub star_radius_deg: f64,
+    /// Radiance between the stars.
+    pub background: Rgb,
+}
+
+impl Default for StarFieldParams {
+    fn default() -> Self {
+        Self { density: 1000.0, brightness: 2e-5, seed: 0, star_radius_deg: 0.05, background: Rgb::ZERO }
+    }
+}
+
+/// One star.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Star {
+    /// Unit direction of the disc's centre.
+    pub dir: Vec3,
+    /// Flux: radiance × solid angle of the disc (before the colour tint, which has unit luminance).
+    pub flux: f64,
+    /// Angular radius of the disc, radians.
+    pub radius: f64,
+    /// Colour temperature, kelvin.
+    pub temperature: f64,
+}
+
+impl Star {
+    /// Solid angle of the disc, `2π(1 − cos r) = 4π sin²(r/2)`.
+    pub fn solid_angle(&self) -> f64 {
+        let s = (0.5 * self.radius).sin();
+        4.0 * PI * s * s
+    }
+
+    /// The constant radiance over the disc.
+    pub fn radiance(&self) -> Rgb {
+        blackbody_tint(self.temperature) * (self.flux / self.solid_angle()) as f32
+    }
+
+    /// True when `dir` lies on the disc.
+    pub fn covers(&self, dir: Vec3) -> bool {
+        dir.dot(self.dir) >= self.radius.cos()
+    }
+}
+
+/// A procedural star field; see the module documentation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StarField {
+    params: StarFieldParams,
+    /// Cells per cube-face edge.
+    n: u32,
+    min_flux: f64,
+    min_radius: f64,
+    /// How close (in face coordinates) to a cell border a direction must be for the neighbour to matter.
+    margin: f64,
+}
+
+/// A cube-map cell: face `0..6` (`+x, −x, +y, −y, +z, −z`), column `i`, row `j`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Cell {
+    face: u32,
+    i: u32,
+    j: u32,
+}
+
+/// The face a direction falls on and its face coordinates `(x, y) ∈ [−1, 1]²`, where face `f` has major
+/// axis `k = f/2` with sign `+` for even `f`, and `x`, `y` are the components along axes `k+1`, `k+2`
+/// (cyclically) divided by the major one.
+fn project(d: Vec3) -> (u32, f64, f64) {
+    let a = d.abs();
+    let k = if a.x >= a.y && a.x >= a.z {
+        0
+    } else if a.y >= a.z {
+        1
+    } else {
+        2
+    };
+    let major = d[k];
+    let face = 2 * k as u32 + u32::from(major < 0.0);
+    let m = major.abs();
+    (face, d[(k + 1) % 3] / m, d[(k + 2) % 3] / m)
+}
+
+/// The (unnormalised) point `(x, y)` of a face's plane, the inverse of [`project`].
+fn face_point(face: u32, x: f64, y: f64) -> Vec3 {
+    let k = (face / 2) as usize;
+    let mut p = Vec3::ZERO;
+    p[k] = if face % 2 == 0 { 1.0 } else { -1.0 };
+    p[(k + 1) % 3] = x;
+    p[(k + 2) % 3] = y;
+    p
+}
+
+/// Solid angle subtended by the rectangle `[0, x] × [0, y]` of a plane at unit distance.
+fn corner_solid_angle(x: f64, y: f64) -> f64 {
+    (x * y / (1.0 + x * x + y * y).sqrt()).atan()
+}
+
+/// Poisson-distributed count with mean `lambda` (Knuth's multiplication method; `lambda ≤ 700`).
+fn poisson(rng: &mut Rng, lambda: f64) -> u32 {
+    let limit = (-lambda).exp();
+    let mut product = rng.next_f64();
+    let mut k = 0;
+    while product > limit {
+        k += 1;
+        product *= rng.next_f64();
+    }
+    k
+}
+
+/// A unit-luminance colour for a blackbody at `temperature` K relative to a 6504 K white (Planck's law
+/// sampled at three wavelengths standing for R, G, B; an approximation, not a colour-matching integral).
+fn blackbody_tint(temperature: f64) -> Rgb {
+    const C2: f64 = 1.4388e-2; // second radiation constant hc/k, m·K
+    const WAVELENGTHS: [f64; 3] = [610e-9, 550e-9, 465e-9];
+    let planck = |lambda: f64, t: f64| 1.0 / (lambda.powi(5) * ((C2 / (lambda * t)).exp() - 1.0));
+    let c = WAVELENGTHS.map(|l| (planck(l, temperature) / planck(l, 6504.0)) as f32);
+    let c = Rgb::from_array(c);
+    c / luminance(c)
+}
+
+impl StarField {
+    /// Validates the parameters and picks the cube map's resolution.
+    pub fn new(params: StarFieldParams) -> Result<Self, String> {
+        let StarFieldParams { density, brightness, star_radius_deg, background, .. } = params;
+        if !(density.is_finite() && density >= 0.0) {
+            return Err(format!("star density {density} must be a number ≥ 0"));
+        }
+        if !(brightness.is_finite() && brightness >= 0.0) {
+            return Err(format!("star brightness {brightness} must be a number ≥ 0"));
+        }
+        if !(star_radius_deg > 0.0 && star_radius_deg <= 2.0) {
+            return Err(format!("star_radius_deg {star_radius_deg} must lie in (0, 2]"));
+        }
+        if !(background.is_finite() && background.min_element() >= 0.0) {
+            return Err(format!("star field background {background} must be finite and ≥ 0"));
+        }
+        let min_radius = star_radius_deg.to_radians();
+        let max_radius = MAX_RADIUS_FACTOR * min_radius;
+        // Gnomonic projection maps great circles to straight lines and shrinks angles by at most
+        // 1/(1 + x² + y²) ≥ 1/3, so a disc of angular radius r lies within 3r (face units) of its centre.
+        let margin = 3.0 * max_radius * (1.0 + 1e-6);
+        // Cells at least 4 margins wide (2/N ≥ 4·margin), and about STARS_PER_CELL stars each.
+        let n_max = (0.5 / margin).floor().max(1.0);
+        let n_wanted = (4.0 * PI * density / (6.0 * STARS_PER_CELL)).sqrt().ceil().max(1.0);
+        let n = n_wanted.min(n_max);
+        let per_cell = 4.0 * PI * density / (6.0 * n * n);
+        if per_cell > MAX_STARS_PER_CELL {
+            return Err(format!(
+                "star density {density}/sr is too high for star_radius_deg {star_radius_deg}: \
+                 {per_cell:.0} stars per lookup cell (at most {MAX_STARS_PER_CELL}); use smaller stars"
+            ));
+        }
+        // Mean of the truncated Pareto law N(>F) ∝ F^−γ on [F_min, R·F_min]:
+        // F_min · γ/(γ−1) · (1 − R^(1−γ)) / (1 − R^(−γ)).
+        let g = FLUX_SLOPE;
+        let mean_over_min = g / (g - 1.0) * (1.0 - FLUX_RANGE.powf(1.0 - g)) / (1.0 - FLUX_RANGE.powf(-g));
+        Ok(Self { params, n: n as u32, min_flux: brightness / mean_over_min, min_radius, margin })
+    }
+
+    pub fn params(&self) -> &StarFieldParams {
+        &self.params
+    }
+
+    /// Radiance from `dir`: the background plus every star whose disc contains `dir`.
+    pub fn radiance(&self, dir: Vec3) -> Rgb {
+        let (cells, count) = self.candidate_cells(dir);
+        let mut sum = self.params.background;
+        for &c in &cells[..count] {
+            self.cell_stars(c, |star| {
+                if star.covers(dir) {
+                    sum += star.radiance();
+                }
+            });
+        }
+        sum
+    }
+
+    /// The cells that can hold a star whose disc reaches `dir`: its own cell and, when `dir` is within the
+    /// search margin of a border, the neighbours across it (deduplicated; near a cube corner several
+    /// offsets land in the same cell). Returns the cells and how many of them are valid.
+    fn candidate_cells(&self, dir: Vec3) -> ([Cell; 9], usize) {
+        let (face, x, y) = project(dir);
+        let cell = self.cell_at(face, x, y);
+        let h = 2.0 / f64::from(self.n);
+        let x0 = -1.0 + f64::from(cell.i) * h;
+        let y0 = -1.0 + f64::from(cell.j) * h;
+        // Whether the neighbour at offset −1, 0, +1 along each axis can matter.
+        let near = |lo: f64, v: f64| [v - lo < self.margin, true, lo + h - v < self.margin];
+        let (near_i, near_j) = (near(x0, x), near(y0, y));
+        let last = self.n - 1;
+        let off_face = (near_i[0] && cell.i == 0)
+            || (near_i[2] && cell.i == last)
+            || (near_j[0] && cell.j == 0)
+            || (near_j[2] && cell.j == last);
+        let mut cells = [cell; 9];
+        let mut count = 1;
+        for (a, di) in [-1i64, 0, 1].into_iter().enumerate() {
+            for (b, dj) in [-1i64, 0, 1].into_iter().enumerate() {
+                // Across a face edge the cells of the two faces do not line up exactly (each face's
+                // coordinates stretch differently away from the edge): then take the whole ring.
+                if (di, dj) == (0, 0) || !(off_face || (near_i[a] && near_j[b])) {
+                    continue;
+                }
+                let neighbour = self.neighbour(cell, di, dj);
+                if !cells[..count].contains(&neighbour) {
+                    cells[count] = neighbour;
+                    count += 1;
+                }
+            }
+        }
+        (cells, count)
+    }
+
+    /// Calls `visit` for every star of the sky (for tests, statistics, or a renderer that wants to treat
+    /// stars as lights). Allocation-free.
+    pub fn for_each_star(&self, mut visit: impl FnMut(&Star)) {
+        for face in 0..6 {
+            for j in 0..self.n {
+                for i in 0..self.n {
+                    self.cell_stars(Cell { face, i, j }, &mut visit);
+                }
+            }
+        }
+    }
+
+    fn cell_at(&self, face: u32, x: f64, y: f64) -> Cell {
+        let n = f64::from(self.n);
+        let index = |v: f64| (((v + 1.0) * 0.5 * n).floor().max(0.0) as u32).min(self.n - 1);
+        Cell { face, i: index(x), j: index(y) }
+    }
+
+    /// The cell `(i + di, j + dj)`, continued onto the neighbouring face when it falls off this one: a
+    /// point just beyond the edge, on this face's extended plane, projects into the adjacent face's cell
+    /// that shares the edge (face coordinates along a shared edge agree).
+    fn neighbour(&self, c: Cell, di: i64, dj: i64) -> Cell {
+        let (i, j) = (i64::from(c.i) + di, i64::from(c.j) + dj);
+        let n = i64::from(self.n);
+        if (0..n).contains(&i) && (0..n).contains(&j) {
+            return Cell { face: c.face, i: i as u32, j: j as u32 };
+        }
+        let h = 2.0 / f64::from(self.n);
+        let coordinate = |k: i64| {
+            if k < 0 {
+                -1.0 - 1e-9
+            } else if k >= n {
+                1.0 + 1e-9
+            } else {
+                -1.0 + (k as f64 + 0.5) * h
+            }
+        };
+        let (face, x, y) = project(face_point(c.face, coordinate(i), coordinate(j)));
+        self.cell_at(face, x, y)
+    }
+
+    /// Generates the stars of one cell from its own random stream.
+    fn cell_stars(&self, c: Cell, mut visit: impl FnMut(&Star)) {
+        let n = f64::from(self.n);
+        let h = 2.0 / n;
+        let (x0, y0) = (-1.0 + f64::from(c.i) * h, -1.0 + f64::from(c.j) * h);
+        let (x1, y1) = (x0 + h, y0 + h);
+        let solid_angle = corner_solid_angle(x1, y1) - corner_solid_angle(x0, y1) - corner_solid_angle(x1, y0)
+            + corner_solid_angle(x0, y0);
+        let cell_index = (u64::from(c.face) * u64::from(self.n) + u64::from(c.j)) * u64::from(self.n) + u64::from(c.i);
+        let mut rng = Rng::for_sample(self.params.seed, cell_index, 0);
+        let count = poisson(&mut rng, (self.params.density * solid_angle).min(700.0));
+        // Largest area density over the cell, at its point nearest the face centre.
+        let nearest_to_zero = |a: f64, b: f64| if a <= 0.0 && b >= 0.0 { 0.0 } else { a.abs().min(b.abs()) };
+        let (xm, ym) = (nearest_to_zero(x0, x1), nearest_to_zero(y0, y1));
+        let density_max = (1.0 + xm * xm + ym * ym).powf(-1.5);
+        for _ in 0..count {
+            // Uniform in solid angle: rejection against dΩ/dA = (1 + x² + y²)^(−3/2). The acceptance rate
+            // is above 0.19 even for a whole face; 64 tries fail with probability < 1e-5.
+            let (mut x, mut y) = (x0, y0);
+            for _ in 0..64 {
+                x = x0 + h * rng.next_f64();
+                y = y0 + h * rng.next_f64();
+                if rng.next_f64() * density_max <= (1.0 + x * x + y * y).powf(-1.5) {
+                    break;
+                }
+            }
+            // Inverse CDF of the truncated Pareto law.
+            let u = rng.next_f64();
+            let flux_ratio = (1.0 - u * (1.0 - FLUX_RANGE.powf(-FLUX_SLOPE))).powf(-1.0 / FLUX_SLOPE);
+            let temperature = T_MIN * (T_MAX / T_MIN).powf(rng.next_f64());
+            visit(&Star {
+                dir: face_point(c.face, x, y).normalize(),
+                flux: self.min_flux * flux_ratio,
+                radius: self.min_radius * flux_ratio.powf(RADIUS_EXPONENT).min(MAX_RADIUS_FACTOR),
+                temperature,
+            });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampling::uniform_sphere;
+
+    fn field(density: f64, radius_deg: f64, seed: u64) -> StarField {
+        StarField::new(StarFieldParams {
+            density,
+            brightness: 1e-3,
+            seed,
+            star_radius_deg: radius_deg,
+            background: Rgb::splat(1e-4),
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn cube_cells_tile_the_sphere() {
+        // The exact cell solid angles of one face sum to 4π/6.
+        let f = field(3000.0, 0.05, 1);
+        let n = f.n;
+        let h = 2.0 / f64::from(n);
+        let mut total = 0.0;
+        for j in 0..n {
+            for i in 0..n {
+                let (x0, y0) = (-1.0 + f64::from(i) * h, -1.0 + f64::from(j) * h);
+                let (x1, y1) = (x0 + h, y0 + h);
+                total += corner_solid_angle(x1, y1) - corner_solid_angle(x0, y1) - corner_solid_angle(x1, y0)
+                    + corner_solid_angle(x0, y0);
+            }
+        }
+        assert!((total - 4.0 * PI / 6.0).abs() < 1e-10, "{total}");
+        // project / face_point round trip, and cells of directions contain them.
+        let mut rng = Rng::new(3);
+        for _ in 0..1000 {
+            let d = uniform_sphere(rng.next_2d());
+            let (face, x, y) = project(d);
+            assert!(x.abs() <= 1.0 && y.abs() <= 1.0);
+            assert!((face_point(face, x, y).normalize() - d).length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn deterministic_for_a_seed() {
+        let (a, b, c) = (field(500.0, 0.2, 42), field(500.0, 0.2, 42), field(500.0, 0.2, 43));
+        let mut stars_a = Vec::new();
+        a.for_each_star(|s| stars_a.push(*s));
+        let mut stars_b = Vec::new();
+        b.for_each_star(|s| stars_b.push(*s));
+        assert_eq!(stars_a, stars_b);
+        let mut stars_c = Vec::new();
+        c.for_each_star(|s| stars_c.push(*s));
+        assert_ne!(stars_a, stars_c, "another seed, another sky");
+        // And lookups agree, in any order.
+        for s in stars_a.iter().rev().take(50) {
+            assert_eq!(a.radiance(s.dir), b.radiance(s.dir));
+        }
+    }
+
+    #[test]
+    fn star_count_per_steradian_matches_density() {
+        // Poisson: the count in a region of solid angle Ω has mean and variance density·Ω. 5σ tolerances.
+        for (density, seed) in [(50.0, 1), (400.0, 2), (3000.0, 3)] {
+            let f = field(density, 0.05, seed);
+            let (mut all, mut cap, mut band) = (0.0, 0.0, 0.0);
+            f.for_each_star(|s| {
+                all += 1.0;
+                // A cap of half-angle 60° around an oblique axis (solid angle π) and a band |z| < 0.1 (0.4π).
+                if s.dir.dot(Vec3::new(1.0, 2.0, 3.0).normalize()) > 0.5 {
+                    cap += 1.0;
+                }
+                if s.dir.z.abs() < 0.1 {
+                    band += 1.0;
+                }
+            });
+            for (count, omega, name) in [(all, 4.0 * PI, "sphere"), (cap, PI, "cap"), (band, 0.4 * PI, "band")] {
+                let mean = density * omega;
+                assert!((count - mean).abs() < 5.0 * mean.sqrt(), "density {density}, {name}: {count} vs {mean}");
+            }
+        }
+    }
+
+    #[test]
+    fn mean_flux_is_brightness() {
+        let f = field(3000.0, 0.05, 5);
+        let (mut n, mut sum, mut sum2) = (0.0, 0.0, 0.0);
+        let (mut min_r, mut max_r) = (f64::INFINITY, 0.0f64);
+        f.for_each_star(|s| {
+            n += 1.0;
+            sum += s.flux;
+            sum2 += s.flux * s.flux;
+            min_r = min_r.min(s.radius);
+            max_r = max_r.max(s.radius);
+        });
+        let mean = sum / n;
+        let err = ((sum2 / n - mean * mean) / n).sqrt();
+        assert!((mean - 1e-3).abs() < 5.0 * err, "mean flux {mean} ± {err}");
+        let r0 = 0.05f64.to_radians();
+        assert!(min_r >= r0 && min_r < 1.01 * r0 && max_r <= 4.0 * r0 + 1e-15 && max_r > 2.0 * r0);
+    }
+
+    #[test]
+    fn search_covers_every_direction_within_the_largest_radius() {
+        // Adversarial check of the neighbour search: pairs (d, s) at angular distance up to the largest
+        // star radius, half of them pushed next to cube edges and corners; s's cell must be a candidate of d.
+        for (density, radius_deg) in [(300.0, 0.25), (5000.0, 0.05), (1.0, 2.0)] {
+            let f = field(density, radius_deg, 0);
+            let r_max = MAX_RADIUS_FACTOR * radius_deg.to_radians();
+            let mut rng = Rng::new(17);
+            for k in 0..200_000 {
+                let mut d = uniform_sphere(rng.next_2d());
+                if k % 2 == 0 {
+                    // Snap one or two face coordinates to ±1 (a cube edge or corner), then jitter.
+                    let (face, mut x, mut y) = project(d);
+                    x = if rng.next_f64() < 0.5 { x.signum() } else { x };
+                    y = if x.abs() == 1.0 && rng.next_f64() < 0.5 { y } else { y.signum() };
+                    let jitter = 2.0 * r_max * (rng.next_f64() - 0.5);
+                    d = face_point(face, x + jitter, y - jitter).normalize();
+                }
+                let frame = crate::geometry::Frame::from_normal(d);
+                let (a, phi) = (r_max * rng.next_f64().sqrt(), 2.0 * PI * rng.next_f64());
+                let s = frame.to_world(Vec3::new(a.sin() * phi.cos(), a.sin() * phi.sin(), a.cos()));
+                let (face, x, y) = project(s);
+                let target = f.cell_at(face, x, y);
+                let (cells, count) = f.candidate_cells(d);
+                assert!(cells[..count].contains(&target), "radius {radius_deg}°: {s} not searched from {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn every_disc_is_found_including_across_cube_edges() {
+        // Big stars, many near cube edges and corners: each star's radiance must be seen at its centre and
+        // near its rim in eight directions (other stars may add to it, never hide it).
+        for seed in 0..3 {
+            let f = field(300.0, 0.25, seed);
+            let background = f.params().background;
+            let mut checked = 0;
+            f.for_each_star(|s| {
+                let own = s.radiance();
+                let frame = crate::geometry::Frame::from_normal(s.dir);
+                for k in 0..9 {
+                    let d = if k == 0 {
+                        s.dir
+                    } else {
+                        let phi = f64::from(k) * PI / 4.0;
+                        let a = 0.97 * s.radius;
+                        frame.to_world(Vec3::new(a.sin() * phi.cos(), a.sin() * phi.sin(), a.cos()))
+                    };
+                    let seen = f.radiance(d) - background;
+                    assert!((seen - own).min_element() > -1e-3 * own.max_element(), "star at {} missed", s.dir);
+                    checked += 1;
+                }
+            });
+            assert!(checked > 1000);
+        }
+    }
+
+    #[test]
+    fn flux_is_radiance_times_solid_angle() {
+        // Integrate the sky's radiance over the sphere by Monte Carlo: ∫ (L − background) dω = Σ flux.
+        let f = field(20.0, 1.0, 9);
+        let mut total_flux = Rgb::ZERO;
+        f.for_each_star(|s| total_flux += s.radiance() * s.solid_angle() as f32);
+        let n = 300_000;
+        let mut rng = Rng::new(11);
+        let (mut sum, mut sum2) = (0.0f64, 0.0f64);
+        for _ in 0..n {
+            let l = f.radiance(uniform_sphere(rng.next_2d())) - f.params().background;
+            let v = f64::from(luminance(l)) * 4.0 * PI;
+            sum += v;
+            sum2 += v * v;
+        }
+        let mean = sum / f64::from(n);
+        let err = ((sum2 / f64::from(n) - mean * mean) / f64::from(n)).sqrt();
+        let expected = f64::from(luminance(total_flux));
+        assert!((mean - expected).abs() < 5.0 * err, "{mean} ± {err} vs {expected}");
+        // The tint has unit luminance, so the luminous flux is the sum of fluxes ≈ density·4π·brightness.
+        let mut plain = 0.0;
+        f.for_each_star(|s| plain += s.flux);
+        assert!((expected - plain).abs() < 1e-4 * plain);
+    }
+
+    #[test]
+    fn tint_is_warm_to_cool_with_unit_luminance() {
+        let (cool, white, hot) = (blackbody_tint(3000.0), blackbody_tint(6504.0), blackbody_tint(12000.0));
+        for c in [cool, white, hot] {
+            assert!((luminance(c) - 1.0).abs() < 1e-5);
+        }
+        assert!(cool.x > cool.z && hot.z > hot.x, "red stars are cool, blue ones hot");
+        assert!((white - Rgb::ONE).abs().max_element() < 1e-5);
+    }
+
+    #[test]
+    fn bad_parameters_are_errors() {
+        let ok = StarFieldParams::default();
+        assert!(StarField::new(ok).is_ok());
+        for bad in [
+            StarFieldParams { density: -1.0, ..ok },
+            StarFieldParams { density: f64::NAN, ..ok },
+            StarFieldParams { brightness: f64::INFINITY, ..ok },
+            StarFieldParams { star_radius_deg: 0.0, ..ok },
+            StarFieldParams { star_radius_deg: 5.0, ..ok },
+            StarFieldParams { density: 1e7, star_radius_deg: 2.0, ..ok },
+        ] {
+            assert!(StarField::new(bad).is_err(), "{bad:?}");
+        }
+    }
+}

@@ -1,0 +1,206 @@
+//! The runtime scene: objects (shape + material + optional emission) in each region of
+//! spacetime, their bounding-volume hierarchy, the emitters for light sampling, and the sky.
+//!
+//! A black hole's spacetime has one region; a wormhole has two, one on each side of its throat,
+//! each with its own objects, lights and sky (world coordinates of a region are its own).
+
+use crate::accel::Bvh;
+use crate::color::{luminance, Rgb};
+use crate::geometry::{Aabb, Ray, Vec3};
+use crate::material::Material;
+use crate::shape::{Shape, SurfaceHit};
+use crate::sky::Sky;
+use spacetime::Region;
+
+/// Light emitted by a surface: constant radiance on its outward side (both sides if
+/// `two_sided`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Emission {
+    pub radiance: Rgb,
+    pub two_sided: bool,
+}
+
+impl Emission {
+    /// Radiance leaving the surface with outward normal `ng` in direction `dir` (unit, world).
+    pub fn radiance_towards(&self, ng: Vec3, dir: Vec3) -> Rgb {
+        if self.two_sided || ng.dot(dir) > 0.0 {
+            self.radiance
+        } else {
+            Rgb::ZERO
+        }
+    }
+}
+
+/// One object of the scene.
+#[derive(Clone, Debug)]
+pub struct Object {
+    pub shape: Shape,
+    /// Index into [`World::materials`].
+    pub material: usize,
+    pub emission: Option<Emission>,
+}
+
+/// A region's contents.
+#[derive(Clone, Debug)]
+struct RegionScene {
+    objects: Vec<Object>,
+    bvh: Bvh,
+    /// Emitting objects with finite area, and the cumulative distribution of their power
+    /// (radiance luminance × area) for choosing one.
+    lights: Vec<usize>,
+    light_cdf: Vec<f64>,
+    sky: Sky,
+}
+
+impl RegionScene {
+    fn new(objects: Vec<Object>, sky: Sky) -> Self {
+        let bounds: Vec<Aabb> = objects.iter().map(|o| o.shape.bounds()).collect();
+        let bvh = Bvh::build(&bounds);
+        let mut lights = Vec::new();
+        let mut light_cdf = Vec::new();
+        let mut total = 0.0;
+        for (i, o) in objects.iter().enumerate() {
+            if let Some(e) = o.emission {
+                let area = o.shape.area();
+                let power = f64::from(luminance(e.radiance)) * area * if e.two_sided { 2.0 } else { 1.0 };
+                if area.is_finite() && power > 0.0 {
+                    total += power;
+                    lights.push(i);
+                    light_cdf.push(total);
+                }
+            }
+        }
+        for c in &mut light_cdf {
+            *c /= total;
+        }
+        Self { objects, bvh, lights, light_cdf, sky }
+    }
+}
+
+/// A light chosen for sampling, with the probability of having chosen it.
+#[derive(Clone, Copy, Debug)]
+pub struct LightChoice {
+    pub object: usize,
+    pub probability: f64,
+}
+
+/// The scene as the integrator sees it.
+#[derive(Clone, Debug)]
+pub struct World {
+    pub materials: Vec<Material>,
+    upper: RegionScene,
+    lower: RegionScene,
+}
+
+impl World {
+    /// A world from the objects and sky of each region. Material indices must be valid.
+    pub fn new(materials: Vec<Material>, upper: (Vec<Object>, Sky), lower: (Vec<Object>, Sky)) -> Self {
+        Self { materials, upper: RegionScene::new(upper.0, upper.1), lower: RegionScene::new(lower.0, lower.1) }
+    }
+
+    fn region(&self, region: Region) -> &RegionScene {
+        match region {
+            Region::Upper => &self.upper,
+            Region::Lower => &self.lower,
+        }
+    }
+
+    /// The nearest hit of the segment `ray` in `region`: the object index and the distance.
+    #[inline]
+    pub fn intersect(&self, region: Region, ray: &Ray) -> Option<(usize, f64)> {
+        let r = self.region(region);
+        r.bvh.closest_hit(ray, |i, ray| r.objects[i].shape.intersect(ray))
+    }
+
+    /// Whether anything blocks the segment `ray` in `region`.
+    pub fn occluded(&self, region: Region, ray: &Ray) -> bool {
+        let r = self.region(region);
+        r.bvh.any_hit(ray, |i, ray| r.objects[i].shape.intersect(ray).is_some())
+    }
+
+    pub fn object(&self, region: Region, index: usize) -> &Object {
+        &self.region(region).objects[index]
+    }
+
+    pub fn objects(&self, region: Region) -> &[Object] {
+        &self.region(region).objects
+    }
+
+    /// The full surface record of a hit found by [`World::intersect`].
+    pub fn surface(&self, region: Region, index: usize, ray: &Ray, t: f64) -> SurfaceHit {
+        self.object(region, index).shape.surface(ray, t)
+    }
+
+    pub fn sky(&self, region: Region) -> &Sky {
+        &self.region(region).sky
+    }
+
+    /// Bounds of the finite objects of a region (empty if it has none).
+    pub fn bounds(&self, region: Region) -> Aabb {
+        self.region(region).bvh.bounds()
+    }
+
+    /// Number of light-sampleable emitters in a region.
+    pub fn light_count(&self, region: Region) -> usize {
+        self.region(region).lights.len()
+    }
+
+    /// Picks an emitter in proportion to its power.
+    pub fn choose_light(&self, region: Region, u: f64) -> Option<LightChoice> {
+        let r = self.region(region);
+        let k = r.light_cdf.partition_point(|&c| c <= u).min(r.lights.len().checked_sub(1)?);
+        let lo = if k == 0 { 0.0 } else { r.light_cdf[k - 1] };
+        Some(LightChoice { object: r.lights[k], probability: r.light_cdf[k] - lo })
+    }
+
+    /// Probability that [`World::choose_light`] picks `object`.
+    pub fn light_probability(&self, region: Region, object: usize) -> f64 {
+        let r = self.region(region);
+        match r.lights.binary_search(&object) {
+            Ok(k) => r.light_cdf[k] - if k == 0 { 0.0 } else { r.light_cdf[k - 1] },
+            Err(_) => 0.0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::texture::Texture;
+    use crate::transform::Transform;
+
+    fn world_with_two_lights() -> World {
+        let t = Transform::identity();
+        let light = |x: f64, r: f32| Object {
+            shape: Shape::sphere(Vec3::new(x, 0.0, 0.0), 1.0, &t).unwrap(),
+            material: 0,
+            emission: Some(Emission { radiance: Rgb::splat(r), two_sided: false }),
+        };
+        World::new(
+            vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.5)) }],
+            (vec![light(0.0, 1.0), light(5.0, 3.0)], Sky::Constant(Rgb::ZERO)),
+            (Vec::new(), Sky::Constant(Rgb::ZERO)),
+        )
+    }
+
+    #[test]
+    fn lights_are_chosen_by_power() {
+        let w = world_with_two_lights();
+        assert_eq!(w.light_count(Region::Upper), 2);
+        assert!((w.light_probability(Region::Upper, 0) - 0.25).abs() < 1e-12);
+        assert!((w.light_probability(Region::Upper, 1) - 0.75).abs() < 1e-12);
+        assert_eq!(w.choose_light(Region::Upper, 0.1).unwrap().object, 0);
+        assert_eq!(w.choose_light(Region::Upper, 0.3).unwrap().object, 1);
+        assert!(w.choose_light(Region::Lower, 0.3).is_none());
+    }
+
+    #[test]
+    fn segments_find_the_nearest_object() {
+        let w = world_with_two_lights();
+        let ray = Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X, 100.0);
+        let (i, t) = w.intersect(Region::Upper, &ray).unwrap();
+        assert_eq!(i, 0);
+        assert!((t - 4.0).abs() < 1e-9);
+        assert!(w.intersect(Region::Upper, &Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X, 3.0)).is_none());
+    }
+}
