@@ -111,7 +111,10 @@ fn scene_bench(args: &Args, name: &str, path: Option<&std::path::Path>) -> Resul
                 })
             })
             .collect();
-        println!("{}", serde_json::json!({ "workload": name, "size": size, "spp": 64, "max_depth": 8, "results": results }));
+        println!(
+            "{}",
+            serde_json::json!({ "workload": name, "size": size, "spp": 64, "max_depth": 8, "results": results })
+        );
     } else {
         println!("{name}: {size}×{size}, 64 spp, depth 8, spacetime {}", scene.spacetime.name());
         println!("{:>7} {:>10} {:>12} {:>14} {:>14}", "threads", "seconds", "samples", "samples/s", "rays/s");

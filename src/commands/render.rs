@@ -104,7 +104,8 @@ pub fn run(args: &Args) -> Result<(), String> {
     {
         let cancel = Arc::clone(&cancel);
         // A second Ctrl-C while the image is being written kills the process as usual.
-        ctrlc::set_handler(move || cancel.store(true, Ordering::Relaxed)).map_err(|e| format!("cannot handle Ctrl-C: {e}"))?;
+        ctrlc::set_handler(move || cancel.store(true, Ordering::Relaxed))
+            .map_err(|e| format!("cannot handle Ctrl-C: {e}"))?;
     }
     let bar = (!args.quiet && std::io::stderr().is_terminal()).then(|| {
         let bar = ProgressBar::new(1);

@@ -5,20 +5,20 @@
 //! Data flows one way: `geometry` → `shape` → `accel` → `texture`/`material`/`sky` → `sampling` → `film`.
 
 pub mod accel;
+pub mod camera;
 pub mod color;
 pub mod film;
 pub mod geometry;
 pub mod image_io;
+pub mod integrator;
 pub mod material;
+pub mod propagator;
+pub mod renderer;
 pub mod sampling;
+pub mod scene;
+pub mod settings;
 pub mod shape;
 pub mod sky;
 pub mod texture;
 pub mod transform;
-pub mod camera;
-pub mod scene;
-pub mod settings;
 pub mod world;
-pub mod propagator;
-pub mod integrator;
-pub mod renderer;

@@ -122,26 +122,38 @@ impl Propagator {
         match &self.spacetime {
             Spacetime::Minkowski(_) => straight(world, region, origin, direction),
             Spacetime::Schwarzschild(m) if m.mass == 0.0 => straight(world, region, origin, direction),
+            Spacetime::Kerr(m) if m.mass == 0.0 => straight(world, region, origin, direction),
             Spacetime::Schwarzschild(m) => self.in_plane(m, world, region, origin, direction),
             Spacetime::Ellis(m) => self.in_plane(m, world, region, origin, direction),
             Spacetime::Kerr(m) => self.hamiltonian(m, world, region, origin, direction),
         }
     }
 
-    fn in_plane<M: PlaneMetric + Lapse>(&self, metric: &M, world: &World, region: Region, origin: Vec3, direction: Vec3) -> RayEnd {
+    fn in_plane<M: PlaneMetric + Lapse>(
+        &self,
+        metric: &M,
+        world: &World,
+        region: Region,
+        origin: Vec3,
+        direction: Vec3,
+    ) -> RayEnd {
         let Some(start) = PlaneStart::from_observer(metric, region, origin.to_array(), direction.to_array()) else {
             return RayEnd::Captured;
         };
         let lapse0 = metric.lapse(origin.length());
         let mut arrival: Option<(ChordHit, Vec3, Region)> = None;
+        let mut last = origin;
         let t = trace_plane(metric, start, &self.trace, |step| {
             let region = step.region();
+            last = Vec3::from_array(step.point(metric, 1.0).position);
             let found = match step {
                 PlaneStep::Straight { from, direction, length, .. } => {
                     let chord = Ray::new(Vec3::from_array(*from), Vec3::from_array(*direction), *length);
                     world.intersect(region, &chord).map(|(object, t)| ChordHit { object, chord, t, theta: 0.0 })
                 }
-                PlaneStep::Curved { .. } => self.curved(world, region, &|theta| Vec3::from_array(step.point(metric, theta).position)),
+                PlaneStep::Curved { .. } => {
+                    self.curved(world, region, &|theta| Vec3::from_array(step.point(metric, theta).position))
+                }
             };
             match found {
                 Some(hit) => {
@@ -162,12 +174,11 @@ impl Propagator {
                 let energy = lapse0 / metric.lapse(hit.p.length());
                 RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy })
             }
-            Fate::Escaped { direction } | Fate::Traversed { direction } => RayEnd::Escaped {
-                region: if matches!(t.fate, Fate::Traversed { .. }) { other(region) } else { region },
-                direction: Vec3::from_array(direction),
-                traversed: matches!(t.fate, Fate::Traversed { .. }),
-                energy: lapse0,
-            },
+            Fate::Escaped { direction } | Fate::Traversed { direction } => {
+                let traversed = matches!(t.fate, Fate::Traversed { .. });
+                let region = if traversed { other(region) } else { region };
+                beyond(world, region, last, Vec3::from_array(direction), traversed, lapse0)
+            }
             Fate::Captured => RayEnd::Captured,
             Fate::Failed(_) => RayEnd::Failed,
         }
@@ -281,7 +292,8 @@ impl Propagator {
             }
             // A static observer at infinity measures the conserved `p_t` of the backward ray.
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
-                RayEnd::Escaped { region, direction: Vec3::from_array(direction), traversed: false, energy: p[0] }
+                let end = Vec3::new(trace.end.x[1], trace.end.x[2], trace.end.x[3]);
+                beyond(world, region, end, Vec3::from_array(direction), false, p[0])
             }
             Fate::Captured => RayEnd::Captured,
             Fate::Failed(_) => RayEnd::Failed,
@@ -320,6 +332,16 @@ fn other(region: Region) -> Region {
     match region {
         Region::Upper => Region::Lower,
         Region::Lower => Region::Upper,
+    }
+}
+
+/// A ray past the escape radius: spacetime is flat enough there that the rest of the way is
+/// the straight line along its asymptotic direction; unbounded objects (infinite planes) can
+/// still be met on it. Its energy is then measured by static observers far away (`energy`).
+fn beyond(world: &World, region: Region, from: Vec3, direction: Vec3, traversed: bool, energy: f64) -> RayEnd {
+    match straight(world, region, from, direction) {
+        RayEnd::Hit(a) => RayEnd::Hit(Arrival { energy, ..a }),
+        _ => RayEnd::Escaped { region, direction, traversed, energy },
     }
 }
 

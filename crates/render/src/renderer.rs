@@ -83,7 +83,12 @@ pub fn render(scene: &Scene, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) +
     let start = Instant::now();
     let settings = &scene.settings;
     let propagator = propagator(scene);
-    let integrator = PathIntegrator::new(&scene.world, &propagator, settings.max_depth, settings.integrator == IntegratorKind::BruteForce);
+    let integrator = PathIntegrator::new(
+        &scene.world,
+        &propagator,
+        settings.max_depth,
+        settings.integrator == IntegratorKind::BruteForce,
+    );
     let film = Mutex::new(Film::new(settings.width, settings.height));
     let tiles = film.lock().map(|f| f.tiles(TILE)).unwrap_or_default();
     let total = tiles.len() as u64;

@@ -65,7 +65,13 @@ fn furnace(integrator: IntegratorKind) -> Rgb {
     };
     let mut s = settings(16, 16, 200);
     s.integrator = integrator;
-    let sc = scene(vec![wall], vec![diffuse(0.75)], Sky::Constant(Rgb::ZERO), camera(Vec3::new(0.3, 0.1, 0.0), Vec3::new(1.0, 0.0, 0.5), 90.0), s);
+    let sc = scene(
+        vec![wall],
+        vec![diffuse(0.75)],
+        Sky::Constant(Rgb::ZERO),
+        camera(Vec3::new(0.3, 0.1, 0.0), Vec3::new(1.0, 0.0, 0.5), 90.0),
+        s,
+    );
     let (film, stats) = run(&sc, 2);
     assert_eq!(stats.nan_samples, 0);
     assert_eq!(stats.paths.fates.escaped, 0, "the enclosure is closed");
@@ -85,13 +91,16 @@ fn white_furnace_converges_to_the_analytic_radiance() {
 
 #[test]
 fn glass_in_a_uniform_sky_conserves_energy() {
-    let ball = Object {
-        shape: Shape::sphere(Vec3::ZERO, 1.0, &Transform::identity()).unwrap(),
-        material: 0,
-        emission: None,
-    };
+    let ball =
+        Object { shape: Shape::sphere(Vec3::ZERO, 1.0, &Transform::identity()).unwrap(), material: 0, emission: None };
     let glass = Material::Dielectric { ior: 1.5, transmittance: Texture::Constant(Rgb::ONE) };
-    let sc = scene(vec![ball], vec![glass], Sky::Constant(Rgb::ONE), camera(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 45.0), settings(16, 4, 64));
+    let sc = scene(
+        vec![ball],
+        vec![glass],
+        Sky::Constant(Rgb::ONE),
+        camera(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 45.0),
+        settings(16, 4, 64),
+    );
     let (film, stats) = run(&sc, 2);
     let m = mean(&film);
     // Every path ends in the sky with throughput exactly 1, unless it is trapped for 64 bounces.

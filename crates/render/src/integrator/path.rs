@@ -142,7 +142,15 @@ impl<'a> PathIntegrator<'a> {
     }
 
     /// One light sample with a straight shadow ray (flat space), MIS-weighted.
-    fn direct_light(&self, at: &Arrival, bsdf: &Bsdf, frame: &Frame, wo: Vec3, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
+    fn direct_light(
+        &self,
+        at: &Arrival,
+        bsdf: &Bsdf,
+        frame: &Frame,
+        wo: Vec3,
+        rng: &mut Rng,
+        stats: &mut PathStats,
+    ) -> Rgb {
         let (u_choice, u_point) = (rng.next_f64(), rng.next_2d());
         let Some(choice) = self.world.choose_light(at.region, u_choice) else { return Rgb::ZERO };
         let light = self.world.object(at.region, choice.object);

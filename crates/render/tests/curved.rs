@@ -1,0 +1,123 @@
+//! Rendering in curved spacetime against exact results: the size of a black hole's shadow, the
+//! flat limit, and the chord test against the poster's sign-change test.
+
+#![allow(clippy::unwrap_used)] // A panic is a failed test.
+
+use render::camera::Camera;
+use render::color::Rgb;
+use render::film::Film;
+use render::geometry::Vec3;
+use render::material::Material;
+use render::propagator::{Propagator, RayEnd};
+use render::renderer::render;
+use render::scene::Scene;
+use render::settings::{Intersection, RenderSettings};
+use render::shape::Shape;
+use render::sky::Sky;
+use render::texture::Texture;
+use render::transform::Transform;
+use render::world::{Emission, Object, World};
+use spacetime::{Minkowski, Region, Spacetime};
+use std::sync::atomic::AtomicBool;
+
+fn run(scene: &Scene) -> (Film, render::renderer::RenderStats) {
+    render(scene, &AtomicBool::new(false), &|_, _| {})
+}
+
+fn empty_world(sky: Sky) -> World {
+    World::new(Vec::new(), (Vec::new(), sky), (Vec::new(), Sky::Constant(Rgb::ZERO)))
+}
+
+#[test]
+fn shadow_has_the_exact_angular_radius() {
+    // sin α = 3√3 M √(1 − 2M/r) / r for a static observer at r (Synge 1966).
+    let (mass, r, size, fov) = (1.0, 30.0, 96u32, 30.0f64);
+    let camera = Camera::new(Region::Upper, Vec3::new(0.0, 0.0, r), Vec3::ZERO, Vec3::Y, fov, 0.0, None).unwrap();
+    let settings = RenderSettings { width: size, height: size, spp: 16, max_depth: 1, ..RenderSettings::default() };
+    let scene = Scene {
+        spacetime: Spacetime::schwarzschild(mass).unwrap(),
+        camera,
+        world: empty_world(Sky::Constant(Rgb::ONE)),
+        settings,
+    };
+    let (film, stats) = run(&scene);
+    assert_eq!(stats.nan_samples, 0);
+    assert_eq!(stats.paths.fates.failed, 0);
+    // The sky is blueshifted by the same factor everywhere; normalise by a corner pixel.
+    let sky = film.pixel(0, 0).x;
+    let mut dark_area = 0.0;
+    for y in 0..size {
+        for x in 0..size {
+            dark_area += f64::from(1.0 - film.pixel(x, y).x / sky);
+        }
+    }
+    let alpha = spacetime::analytic::schwarzschild_shadow_angle(mass, r);
+    let radius_px = alpha.tan() / (0.5 * fov.to_radians()).tan() * f64::from(size) / 2.0;
+    let measured = (dark_area / std::f64::consts::PI).sqrt();
+    // Antialiased edge, 16 spp: the area-equivalent radius is good to a small fraction of a pixel.
+    assert!((measured - radius_px).abs() < 0.1, "shadow radius {measured} px, exact {radius_px} px");
+}
+
+/// A small lit room: floor, a lamp and a glass ball; rendered at mass 0 in Schwarzschild and in
+/// Minkowski.
+fn room(spacetime: Spacetime) -> Scene {
+    let t = Transform::identity();
+    let objects = vec![
+        Object { shape: Shape::plane(Vec3::new(0.0, -1.0, 0.0), Vec3::Y, &t).unwrap(), material: 0, emission: None },
+        Object {
+            shape: Shape::sphere(Vec3::new(0.0, 3.0, 0.0), 0.7, &t).unwrap(),
+            material: 0,
+            emission: Some(Emission { radiance: Rgb::splat(5.0), two_sided: false }),
+        },
+        Object { shape: Shape::sphere(Vec3::new(0.6, 0.0, 0.0), 0.6, &t).unwrap(), material: 1, emission: None },
+    ];
+    let materials = vec![
+        Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.6)) },
+        Material::Dielectric { ior: 1.5, transmittance: Texture::Constant(Rgb::ONE) },
+    ];
+    let camera = Camera::new(Region::Upper, Vec3::new(0.0, 1.0, 5.0), Vec3::ZERO, Vec3::Y, 50.0, 0.0, None).unwrap();
+    let settings = RenderSettings { width: 32, height: 32, spp: 8, max_depth: 5, ..RenderSettings::default() };
+    let world =
+        World::new(materials, (objects, Sky::Constant(Rgb::splat(0.2))), (Vec::new(), Sky::Constant(Rgb::ZERO)));
+    Scene { spacetime, camera, world, settings }
+}
+
+#[test]
+fn zero_mass_renders_the_minkowski_image() {
+    let (flat, _) = run(&room(Spacetime::Minkowski(Minkowski)));
+    let (massless, _) = run(&room(Spacetime::schwarzschild(0.0).unwrap()));
+    let (kerr, _) = run(&room(Spacetime::kerr(0.0, 0.0).unwrap()));
+    for y in 0..32 {
+        for x in 0..32 {
+            assert_eq!(flat.pixel(x, y), massless.pixel(x, y), "pixel ({x}, {y})");
+            assert_eq!(flat.pixel(x, y), kerr.pixel(x, y), "pixel ({x}, {y})");
+        }
+    }
+}
+
+#[test]
+fn a_thin_plate_inside_a_long_step_is_hit_by_chords_and_missed_by_sign_changes() {
+    // A 1 mm plate far from a small hole: the geodesic step across it is many metres long, and
+    // both its ends lie outside the plate.
+    let t = Transform::identity();
+    let plate = Object {
+        shape: Shape::cuboid(Vec3::new(-5.0, -5.0, 49.9995), Vec3::new(5.0, 5.0, 50.0005), &t).unwrap(),
+        material: 0,
+        emission: None,
+    };
+    let world = World::new(
+        vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::ONE) }],
+        (vec![plate], Sky::Constant(Rgb::ZERO)),
+        (Vec::new(), Sky::Constant(Rgb::ZERO)),
+    );
+    let hole = Spacetime::schwarzschild(0.01).unwrap();
+    let origin = Vec3::new(0.0, 1.0, 80.0);
+    let dir = Vec3::new(0.0, 0.0, -1.0);
+    let chord = Propagator::new(hole, 100.0, 1e-8, Intersection::Chord);
+    let poster = Propagator::new(hole, 100.0, 1e-8, Intersection::Poster);
+    match chord.trace(&world, Region::Upper, origin, dir) {
+        RayEnd::Hit(a) => assert!((a.hit.p.z - 50.0005).abs() < 1e-3, "hit at {:?}", a.hit.p),
+        other => panic!("chord method missed the plate: {other:?}"),
+    }
+    assert!(matches!(poster.trace(&world, Region::Upper, origin, dir), RayEnd::Escaped { .. } | RayEnd::Captured));
+}
