@@ -34,7 +34,10 @@ fn every_fate_is_reported() {
     assert_eq!(fate(&["--spacetime", "kerr", "--spin", "0.9", "--impact", "2"]), "captured");
     assert_eq!(fate(&["--spacetime", "ellis", "--throat", "1", "--impact", "0.5"]), "traversed");
     assert_eq!(fate(&["--spacetime", "minkowski", "--impact", "1"]), "escaped");
-    assert_eq!(fate(&["--spacetime", "schwarzschild", "--impact", "30", "--integrator", "rk4", "--inclination", "30"]), "escaped");
+    assert_eq!(
+        fate(&["--spacetime", "schwarzschild", "--impact", "30", "--integrator", "rk4", "--inclination", "30"]),
+        "escaped"
+    );
 }
 
 #[test]

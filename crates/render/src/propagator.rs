@@ -57,6 +57,9 @@ pub struct Propagator {
     /// Largest allowed distance between a chord and the curved step it stands for.
     epsilon: f64,
     intersection: Intersection,
+    /// Rotation from world axes to the chart's, for metrics with an axis (Kerr spins about the
+    /// chart's z; a scene may point the spin anywhere).
+    to_chart: glam::DQuat,
 }
 
 impl Propagator {
@@ -72,7 +75,13 @@ impl Propagator {
             max_steps: 1_000_000,
         };
         let epsilon = 1e-4 * scene_radius.max(scale);
-        Self { spacetime, trace, epsilon, intersection }
+        Self { spacetime, trace, epsilon, intersection, to_chart: glam::DQuat::IDENTITY }
+    }
+
+    /// Points the spacetime's symmetry axis (a Kerr hole's spin) along the world vector `axis`.
+    pub fn with_axis(mut self, axis: Vec3) -> Self {
+        self.to_chart = glam::DQuat::from_rotation_arc(axis.normalize(), Vec3::Z);
+        self
     }
 
     /// Chord tolerance ε, in scene units: 10⁻⁴ of the scene's radius.
@@ -105,7 +114,8 @@ impl Propagator {
     /// covector (the gradient of the surface function), so its radial component scales by `κ`.
     pub fn local_normal(&self, region: Region, p: Vec3, n: Vec3) -> Vec3 {
         if let Spacetime::Kerr(m) = self.spacetime {
-            return kerr_local_normal(&m, region, p, n);
+            let back = self.to_chart.inverse();
+            return back * kerr_local_normal(&m, region, self.to_chart * p, self.to_chart * n);
         }
         let kappa = self.radial_scale(p);
         if kappa == 1.0 || p == Vec3::ZERO {
@@ -250,6 +260,13 @@ impl Propagator {
         let m = point(tm);
         let sagitta = (m - 0.5 * (a + b)).length();
         if sagitta > self.epsilon && depth < 24 {
+            // The curve stays within about one sagitta of its chord (twice, to be safe): if no
+            // object comes near that tube, nothing can be hit here and there is nothing to refine.
+            let reach = Vec3::splat(2.0 * sagitta + self.epsilon);
+            let tube = crate::geometry::Aabb::new(a.min(b).min(m) - reach, a.max(b).max(m) + reach);
+            if !world.any_near(region, &tube) {
+                return None;
+            }
             return self
                 .curved_span(world, region, point, (ta, a), (tm, m), depth + 1)
                 .or_else(|| self.curved_span(world, region, point, (tm, m), (tb, b), depth + 1));
@@ -263,15 +280,18 @@ impl Propagator {
         Some(ChordHit { object, chord, t, theta: ta + (tb - ta) * t / len })
     }
 
+    /// The 4-D tracer, in the chart's axes: world vectors are rotated in with `to_chart` and
+    /// chord points rotated back out.
     fn hamiltonian(&self, metric: &Kerr, world: &World, region: Region, origin: Vec3, direction: Vec3) -> RayEnd {
-        let Some(x) = metric.world_to_chart(region, origin.to_array(), 0.0) else { return RayEnd::Failed };
+        let (to_chart, to_world) = (self.to_chart, self.to_chart.inverse());
+        let Some(x) = metric.world_to_chart(region, (to_chart * origin).to_array(), 0.0) else { return RayEnd::Failed };
         let Ok(frame) = Tetrad::local_observer(metric, &x) else { return RayEnd::Captured };
-        let p = frame.backward_momentum(&metric.metric(&x), direction.to_array(), 1.0);
+        let p = frame.backward_momentum(&metric.metric(&x), (to_chart * direction).to_array(), 1.0);
         let mut arrival: Option<(ChordHit, State)> = None;
         let trace = HamiltonianTracer::new(metric, State { x, p }, self.trace).run(|step: &HamiltonianStep| {
             let position = |theta: f64| {
                 let s = step.at(theta);
-                Vec3::new(s.x[1], s.x[2], s.x[3])
+                to_world * Vec3::new(s.x[1], s.x[2], s.x[3])
             };
             match self.curved(world, region, &position) {
                 Some(found) => {
@@ -287,13 +307,13 @@ impl Propagator {
                 let Ok(local) = Tetrad::local_observer(metric, &state.x) else { return RayEnd::Captured };
                 let (n, energy) = local.backward_direction(&state.p);
                 let hit = world.surface(region, found.object, &found.chord, found.t);
-                let direction = Vec3::from_array(n);
+                let direction = to_world * Vec3::from_array(n);
                 RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy })
             }
             // A static observer at infinity measures the conserved `p_t` of the backward ray.
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
-                let end = Vec3::new(trace.end.x[1], trace.end.x[2], trace.end.x[3]);
-                beyond(world, region, end, Vec3::from_array(direction), false, p[0])
+                let end = to_world * Vec3::new(trace.end.x[1], trace.end.x[2], trace.end.x[3]);
+                beyond(world, region, end, to_world * Vec3::from_array(direction), false, p[0])
             }
             Fate::Captured => RayEnd::Captured,
             Fate::Failed(_) => RayEnd::Failed,

@@ -41,6 +41,7 @@ pub fn propagator(scene: &Scene) -> Propagator {
         .chain([scene.camera.position.length()])
         .fold(0.0f64, f64::max);
     Propagator::new(scene.spacetime, radius.max(1e-9), scene.settings.geodesic_rtol, scene.settings.intersection)
+        .with_axis(scene.axis)
 }
 
 /// Sub-pixel position `[0, 1)²` of sample `s` of `spp`: a jittered `k × k` grid when `spp = k²`

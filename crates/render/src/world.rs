@@ -118,6 +118,28 @@ impl World {
         r.bvh.any_hit(ray, |i, ray| r.objects[i].shape.intersect(ray).is_some())
     }
 
+    /// Whether any object of `region` may reach into the box `query` (conservative: bounding
+    /// boxes; an unbounded surface counts when the box's corners are not all on one side of it).
+    pub fn any_near(&self, region: Region, query: &Aabb) -> bool {
+        let r = self.region(region);
+        r.bvh.any_near(query, |i| {
+            let shape = &r.objects[i].shape;
+            let b = shape.bounds();
+            if b.min.is_finite() && b.max.is_finite() {
+                return (0..3).all(|k| b.min[k] <= query.max[k] && b.max[k] >= query.min[k]);
+            }
+            let corner = |k: usize| {
+                Vec3::new(
+                    if k & 1 == 0 { query.min.x } else { query.max.x },
+                    if k & 2 == 0 { query.min.y } else { query.max.y },
+                    if k & 4 == 0 { query.min.z } else { query.max.z },
+                )
+            };
+            let first = shape.surface_function(corner(0)).signum();
+            (1..8).any(|k| shape.surface_function(corner(k)).signum() != first)
+        })
+    }
+
     pub fn object(&self, region: Region, index: usize) -> &Object {
         &self.region(region).objects[index]
     }

@@ -36,6 +36,7 @@ fn shadow_has_the_exact_angular_radius() {
     let settings = RenderSettings { width: size, height: size, spp: 16, max_depth: 1, ..RenderSettings::default() };
     let scene = Scene {
         spacetime: Spacetime::schwarzschild(mass).unwrap(),
+        axis: Vec3::Y,
         camera,
         world: empty_world(Sky::Constant(Rgb::ONE)),
         settings,
@@ -79,7 +80,7 @@ fn room(spacetime: Spacetime) -> Scene {
     let settings = RenderSettings { width: 32, height: 32, spp: 8, max_depth: 5, ..RenderSettings::default() };
     let world =
         World::new(materials, (objects, Sky::Constant(Rgb::splat(0.2))), (Vec::new(), Sky::Constant(Rgb::ZERO)));
-    Scene { spacetime, camera, world, settings }
+    Scene { spacetime, axis: Vec3::Y, camera, world, settings }
 }
 
 #[test]

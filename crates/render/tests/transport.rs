@@ -30,6 +30,7 @@ fn camera(position: Vec3, look_at: Vec3, fov: f64) -> Camera {
 fn scene(objects: Vec<Object>, materials: Vec<Material>, sky: Sky, camera: Camera, settings: RenderSettings) -> Scene {
     Scene {
         spacetime: Spacetime::Minkowski(Minkowski),
+        axis: Vec3::Y,
         camera,
         world: World::new(materials, (objects, sky), (Vec::new(), Sky::Constant(Rgb::ZERO))),
         settings,

@@ -1,1 +1,82 @@
+//! # nullpath scene files
+//!
+//! A scene file is TOML: a spacetime, a camera, render settings, skies, named materials and a list
+//! of objects. [`load`] and [`parse`] turn one into a ready-to-render [`render::scene::Scene`];
+//! the format is documented, element by element, in `docs/scene-format.md`.
+//!
+//! ```
+//! let text = r#"
+//! [camera]
+//! position = [0, 1, 6]
+//! look_at = [0, 1, 0]
+//! fov = 40
+//!
+//! [[objects]]
+//! shape = { type = "sphere", center = [0, 1, 0], radius = 1 }
+//! material = { type = "diffuse", reflectance = [0.8, 0.2, 0.2] }
+//! "#;
+//! let scene = scene::parse(text, "example.toml", std::path::Path::new("."))?;
+//! assert_eq!(scene.world.objects(spacetime::Region::Upper).len(), 1);
+//! # Ok::<(), scene::SceneError>(())
+//! ```
+//!
+//! Every error is a [`SceneError`] naming the file, the line and column, and the field:
+//!
+//! ```
+//! let err = scene::parse("[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = 200\n", "s.toml", ".".as_ref())
+//!     .unwrap_err();
+//! assert_eq!(err.to_string(), "s.toml:4:7: camera.fov: must be in (0, 180) degrees, got 200");
+//! ```
+//!
+//! Unknown keys are errors everywhere (a misspelt key would otherwise be silently ignored), and no
+//! input makes the loader panic.
 
+mod build;
+mod error;
+mod reader;
+
+pub use error::SceneError;
+
+use error::io_message;
+use reader::Doc;
+use std::path::Path;
+use toml::de::DeTable;
+
+/// Reads and builds the scene file at `path`. Relative paths inside it (OBJ meshes, image
+/// textures, equirectangular skies) are resolved against the directory that holds it.
+pub fn load(path: &Path) -> Result<render::scene::Scene, SceneError> {
+    let origin = path.display().to_string();
+    let bytes =
+        std::fs::read(path).map_err(|e| SceneError::file(&origin, format!("cannot read: {}", io_message(&e))))?;
+    let text = match String::from_utf8(bytes) {
+        Ok(text) => text,
+        Err(e) => {
+            let valid = e.utf8_error().valid_up_to();
+            let bytes = e.into_bytes();
+            let prefix = String::from_utf8_lossy(&bytes[..valid]);
+            return Err(SceneError::at(
+                &origin,
+                &prefix,
+                valid,
+                None,
+                "not valid UTF-8 text (TOML files must be UTF-8)",
+            ));
+        }
+    };
+    let base_dir = match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir,
+        _ => Path::new("."),
+    };
+    parse(&text, &origin, base_dir)
+}
+
+/// Builds the scene described by `text`. `origin` names it in error messages (a path, or e.g.
+/// `"<default scene>"`); relative paths inside it are resolved against `base_dir`.
+pub fn parse(text: &str, origin: &str, base_dir: &Path) -> Result<render::scene::Scene, SceneError> {
+    let root = DeTable::parse(text).map_err(|e| {
+        let offset = e.span().map_or(0, |s| s.start);
+        SceneError::at(origin, text, offset, None, format!("invalid TOML: {}", e.message().trim_end()))
+    })?;
+    let doc = Doc { origin, text };
+    build::scene(&doc, &root, base_dir)
+}

@@ -297,6 +297,44 @@ impl Bvh {
         best
     }
 
+    /// Whether any primitive may reach into the box `query`: `near(i)` is asked for every
+    /// primitive whose node boxes overlap it (and for every unbounded one) and decides exactly.
+    /// Used to skip refining curved ray steps far from everything.
+    pub fn any_near(&self, query: &Aabb, mut near: impl FnMut(usize) -> bool) -> bool {
+        if self.unbounded.iter().any(|&i| near(i as usize)) {
+            return true;
+        }
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let overlaps =
+            |n: &Node| (0..3).all(|k| f64::from(n.min[k]) <= query.max[k] && f64::from(n.max[k]) >= query.min[k]);
+        let mut stack = [0u32; STACK];
+        let mut top = 0;
+        let mut node = 0usize;
+        loop {
+            let n = &self.nodes[node];
+            if overlaps(n) {
+                if n.count > 0 {
+                    let first = n.offset as usize;
+                    if self.order[first..first + n.count as usize].iter().any(|&i| near(i as usize)) {
+                        return true;
+                    }
+                } else {
+                    stack[top] = n.offset;
+                    top += 1;
+                    node += 1;
+                    continue;
+                }
+            }
+            if top == 0 {
+                return false;
+            }
+            top -= 1;
+            node = stack[top] as usize;
+        }
+    }
+
     /// Whether any primitive is hit by `ray` (a shadow or visibility query): stops at the first
     /// `hit(i, ray)` that returns true.
     pub fn any_hit(&self, ray: &Ray, mut hit: impl FnMut(usize, &Ray) -> bool) -> bool {

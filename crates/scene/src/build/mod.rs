@@ -1,0 +1,194 @@
+//! From the document tree to a [`Scene`]: one function per section of the file, each checking its
+//! values where it reads them so that errors point at the offending value.
+
+mod material;
+mod object;
+mod settings;
+mod sky;
+
+use crate::reader::{fmt_vec, num, Doc, Result, Table};
+use render::camera::Camera;
+use render::geometry::Vec3;
+use render::image_io::ImageData;
+use render::material::Material;
+use render::scene::Scene;
+use render::sky::Sky;
+use render::world::{Object, World};
+use spacetime::{Minkowski, Region, Spacetime};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use toml::de::DeTable;
+use toml::Spanned;
+
+/// State shared by the sections: where relative paths start, loaded images, materials so far.
+pub(crate) struct Builder<'a> {
+    base_dir: &'a Path,
+    /// Images by resolved path, so that a file used twice is loaded once.
+    images: HashMap<PathBuf, Arc<ImageData>>,
+    materials: Vec<Material>,
+    /// Named materials: name → index into `materials`.
+    material_names: HashMap<String, usize>,
+    /// The material of objects that name none, once one has been needed.
+    default_material: Option<usize>,
+    /// Which regions the spacetime has: a wormhole has two.
+    two_regions: bool,
+}
+
+const TOP_LEVEL: &[&str] = &["spacetime", "camera", "render", "sky", "lower", "materials", "objects"];
+
+/// Builds the scene described by the parsed document `root`.
+pub(crate) fn scene<'a>(doc: &'a Doc<'a>, root: &'a Spanned<DeTable<'a>>, base_dir: &'a Path) -> Result<Scene> {
+    let root = Table::root(doc, root, TOP_LEVEL)?;
+    let spacetime = match root.get("spacetime") {
+        Some(n) => spacetime_section(&n.tagged("spacetime", SPACETIMES)?)?,
+        None => (Spacetime::Minkowski(Minkowski), Vec3::Y),
+    };
+    let (spacetime, axis) = spacetime;
+    let mut b = Builder {
+        base_dir,
+        images: HashMap::new(),
+        materials: Vec::new(),
+        material_names: HashMap::new(),
+        default_material: None,
+        two_regions: matches!(spacetime, Spacetime::Ellis(_)),
+    };
+    let Some(camera) = root.get("camera") else {
+        return Err(root.missing("camera"));
+    };
+    let camera = b.camera(&camera.table(CAMERA_KEYS)?)?;
+    let settings = match root.get("render") {
+        Some(n) => settings::render_settings(&n.table(settings::RENDER_KEYS)?)?,
+        None => render::settings::RenderSettings::default(),
+    };
+    let upper_sky = match root.get("sky") {
+        Some(n) => b.sky(&n)?,
+        None => Sky::Constant(render::color::Rgb::ZERO),
+    };
+    let lower_sky = match root.get("lower") {
+        Some(n) => {
+            let lower = n.table(&["sky"])?;
+            if !b.two_regions {
+                return Err(lower.err(format!(
+                    "only a wormhole (type = \"ellis\") has a lower region; this spacetime ({}) has one",
+                    spacetime.name()
+                )));
+            }
+            match lower.get("sky") {
+                Some(n) => b.sky(&n)?,
+                None => Sky::Constant(render::color::Rgb::ZERO),
+            }
+        }
+        None => Sky::Constant(render::color::Rgb::ZERO),
+    };
+    if let Some(n) = root.get("materials") {
+        b.named_materials(&n.any_table()?)?;
+    }
+    let (mut upper, mut lower): (Vec<Object>, Vec<Object>) = (Vec::new(), Vec::new());
+    if let Some(n) = root.get("objects") {
+        if n.is_table() {
+            return Err(n.err("expected an array of tables: write each object as [[objects]], not [objects]"));
+        }
+        for element in n.array()? {
+            let (region, objects) = b.object(&element)?;
+            match region {
+                Region::Upper => upper.extend(objects),
+                Region::Lower => lower.extend(objects),
+            }
+        }
+    }
+    let world = World::new(b.materials, (upper, upper_sky), (lower, lower_sky));
+    Ok(Scene { spacetime, axis, camera, world, settings })
+}
+
+const SPACETIMES: &[(&str, &[&str])] =
+    &[("minkowski", &[]), ("schwarzschild", &["mass"]), ("kerr", &["mass", "spin", "axis"]), ("ellis", &["throat"])];
+
+/// `[spacetime]`: the metric, validated by the physics crate, and its symmetry axis in the world
+/// (a Kerr hole's spin axis; default `+y`, up).
+fn spacetime_section((kind, t): &(usize, Table<'_>)) -> Result<(Spacetime, Vec3)> {
+    let axis = t.or("axis", Vec3::Y, |n| n.direction())?;
+    let mass = || -> Result<f64> {
+        let m = t.req("mass", |n| n.f64())?;
+        if m >= 0.0 {
+            Ok(m)
+        } else {
+            Err(t.loc("mass").err(format!("must be ≥ 0, got {}", num(m))))
+        }
+    };
+    let result = match SPACETIMES[*kind].0 {
+        "minkowski" => return Ok((Spacetime::Minkowski(Minkowski), axis)),
+        "schwarzschild" => Spacetime::schwarzschild(mass()?).map_err(|e| (t.loc("mass"), e)),
+        "kerr" => {
+            let m = mass()?;
+            let spin = t.req("spin", |n| n.f64())?;
+            if spin.abs() > m {
+                return Err(t.loc("spin").err(format!("|spin| must be ≤ mass = {}, got {}", num(m), num(spin))));
+            }
+            Spacetime::kerr(m, spin).map_err(|e| (t.loc("spin"), e))
+        }
+        _ => {
+            let throat = t.req("throat", |n| n.f64())?;
+            if !(throat > 0.0) {
+                return Err(t.loc("throat").err(format!("must be > 0, got {}", num(throat))));
+            }
+            Spacetime::ellis(throat).map_err(|e| (t.loc("throat"), e))
+        }
+    };
+    result.map(|s| (s, axis)).map_err(|(loc, e)| loc.err(e.to_string()))
+}
+
+const CAMERA_KEYS: &[&str] = &["position", "look_at", "up", "fov", "aperture", "focus_distance", "region"];
+
+impl Builder<'_> {
+    /// A relative path from the scene file, resolved against its directory.
+    fn resolve(&self, file: &str) -> PathBuf {
+        self.base_dir.join(file)
+    }
+
+    /// `region = "upper" | "lower"` of a table (default upper); `lower` only in a wormhole.
+    fn region(&self, t: &Table<'_>) -> Result<Region> {
+        let Some(n) = t.get("region") else {
+            return Ok(Region::Upper);
+        };
+        let region = [Region::Upper, Region::Lower][n.keyword("region", &["upper", "lower"])?];
+        if region == Region::Lower && !self.two_regions {
+            return Err(n.err("only a wormhole (spacetime type = \"ellis\") has a lower region"));
+        }
+        Ok(region)
+    }
+
+    /// `[camera]`.
+    fn camera(&self, t: &Table<'_>) -> Result<Camera> {
+        let position = t.req("position", |n| n.vec3())?;
+        let look_at = t.req("look_at", |n| n.vec3())?;
+        let up = t.or("up", render::geometry::Vec3::Y, |n| n.direction())?;
+        let fov = t.or("fov", 40.0, |n| n.f64())?;
+        let aperture = t.or("aperture", 0.0, |n| n.f64())?;
+        let focus_distance = t.opt("focus_distance", |n| n.f64())?;
+        let region = self.region(t)?;
+        let forward = look_at - position;
+        if forward.length_squared() == 0.0 || !forward.length_squared().is_finite() {
+            return Err(t.loc("look_at").err(format!("must differ from position {}", fmt_vec(position))));
+        }
+        if forward.normalize().cross(up.normalize()).length() < 1e-9 {
+            return Err(t.loc("up").err(format!(
+                "up {} is parallel to the viewing direction {}",
+                fmt_vec(up),
+                fmt_vec(forward)
+            )));
+        }
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(t.loc("fov").err(format!("must be in (0, 180) degrees, got {}", num(fov))));
+        }
+        if !(aperture >= 0.0) {
+            return Err(t.loc("aperture").err(format!("must be ≥ 0, got {}", num(aperture))));
+        }
+        if let Some(d) = focus_distance {
+            if !(d > 0.0) {
+                return Err(t.loc("focus_distance").err(format!("must be > 0, got {}", num(d))));
+            }
+        }
+        Camera::new(region, position, look_at, up, fov, aperture, focus_distance).map_err(|e| t.err(e))
+    }
+}

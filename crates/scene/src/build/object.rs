@@ -1,0 +1,183 @@
+//! `[[objects]]`: shape, material, emission, transform and region of each object.
+
+use super::sky::radiance;
+use super::Builder;
+use crate::reader::{fmt_vec, num, Loc, Node, Result, Table};
+use render::color::Rgb;
+use render::geometry::Vec3;
+use render::material::Material;
+use render::shape::{load_obj, Shape, ShapeError};
+use render::texture::Texture;
+use render::transform::Transform;
+use render::world::{Emission, Object};
+use spacetime::Region;
+
+const OBJECT_KEYS: &[&str] = &["shape", "material", "emission", "transform", "region"];
+
+const SHAPES: &[(&str, &[&str])] = &[
+    ("sphere", &["center", "centre", "radius"]),
+    ("plane", &["point", "normal"]),
+    ("rectangle", &["corner", "edge_u", "edge_v"]),
+    ("disk", &["center", "centre", "normal", "radius"]),
+    ("box", &["min", "max"]),
+    ("cylinder", &["base", "axis", "radius", "height"]),
+    ("mesh", &["file"]),
+];
+
+const TRANSFORM_KEYS: &[&str] = &["translate", "rotate", "scale"];
+const ROTATION_KEYS: &[&str] = &["axis", "degrees"];
+const EMISSION_KEYS: &[&str] = &["radiance", "two_sided"];
+
+/// A length that must be positive.
+fn positive(t: &Table<'_>, key: &str) -> Result<f64> {
+    let x = t.req(key, |n| n.f64())?;
+    if x > 0.0 {
+        Ok(x)
+    } else {
+        Err(t.loc(key).err(format!("must be > 0, got {}", num(x))))
+    }
+}
+
+/// `center` (or its spelling `centre`), required.
+fn center(t: &Table<'_>) -> Result<Vec3> {
+    match t.get_alias(&["center", "centre"])? {
+        Some(n) => n.vec3(),
+        None => Err(t.missing("center")),
+    }
+}
+
+/// `transform = { scale, rotate, translate }`: scale, then the rotations in order, then translate.
+fn transform(n: &Node<'_>) -> Result<Transform> {
+    let t = n.table(TRANSFORM_KEYS)?;
+    let mut m = Transform::identity();
+    if let Some(s) = t.get("scale") {
+        let factors = if s.is_number() { Vec3::splat(s.f64()?) } else { s.vec3()? };
+        m = Transform::scale(factors).map_err(|e| s.err(e.to_string()))?;
+    }
+    if let Some(r) = t.get("rotate") {
+        let rotations = if r.is_array() { r.array()? } else { vec![r] };
+        for rotation in rotations {
+            if !rotation.is_table() {
+                return Err(rotation.expected("a rotation { axis = [x, y, z], degrees = a }"));
+            }
+            let rt = rotation.table(ROTATION_KEYS)?;
+            let axis = rt.req("axis", |n| n.direction())?;
+            let degrees = rt.req("degrees", |n| n.f64())?;
+            let step = Transform::rotate_deg(axis, degrees).map_err(|e| rotation.err(e.to_string()))?;
+            m = m.then(&step);
+        }
+    }
+    if let Some(tr) = t.get("translate") {
+        m = m.then(&Transform::translate(tr.vec3()?));
+    }
+    let det = m.linear().determinant();
+    if !(m.is_finite() && det != 0.0 && det.is_finite()) {
+        return Err(n.err("the transform is not finite or not invertible (a scale too small or too large?)"));
+    }
+    Ok(m)
+}
+
+/// `emission = { radiance = [r, g, b], two_sided = false }`, or just the radiance.
+fn emission(n: &Node<'_>) -> Result<Emission> {
+    if n.is_number() || n.is_array() {
+        return Ok(Emission { radiance: radiance(n)?, two_sided: false });
+    }
+    if !n.is_table() {
+        return Err(n.expected("a radiance [r, g, b] or a table { radiance = [r, g, b], two_sided = false }"));
+    }
+    let t = n.table(EMISSION_KEYS)?;
+    Ok(Emission { radiance: t.req("radiance", radiance)?, two_sided: t.or("two_sided", false, |n| n.bool())? })
+}
+
+impl Builder<'_> {
+    /// One `[[objects]]` entry: its region and its objects (one, or one per triangle of a mesh).
+    pub(super) fn object(&mut self, n: &Node<'_>) -> Result<(Region, Vec<Object>)> {
+        let t = n.table(OBJECT_KEYS)?;
+        let region = self.region(&t)?;
+        let transform_node = t.get("transform");
+        let placement = match &transform_node {
+            Some(n) => transform(n)?,
+            None => Transform::identity(),
+        };
+        let emission = t.opt("emission", emission)?;
+        let material = match t.get("material") {
+            Some(n) => self.material_ref(&n)?,
+            None => self.default_material(),
+        };
+        let shape = t.require("shape")?;
+        let transform_loc = transform_node.as_ref().map(Node::loc);
+        let shapes = self.shapes(&shape, &placement, transform_loc)?;
+        Ok((region, shapes.into_iter().map(|shape| Object { shape, material, emission }).collect()))
+    }
+
+    /// The material of objects that name none: diffuse grey 0.5.
+    fn default_material(&mut self) -> usize {
+        *self.default_material.get_or_insert_with(|| {
+            self.materials.push(Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.5)) });
+            self.materials.len() - 1
+        })
+    }
+
+    fn shapes(&self, n: &Node<'_>, placement: &Transform, transform_loc: Option<Loc<'_>>) -> Result<Vec<Shape>> {
+        let (kind, t) = n.tagged("shape", SHAPES)?;
+        let built = match SHAPES[kind].0 {
+            "sphere" => Shape::sphere(center(&t)?, positive(&t, "radius")?, placement),
+            "plane" => Shape::plane(t.req("point", |n| n.vec3())?, t.req("normal", |n| n.direction())?, placement),
+            "rectangle" => Shape::rectangle(
+                t.req("corner", |n| n.vec3())?,
+                t.req("edge_u", |n| n.vec3())?,
+                t.req("edge_v", |n| n.vec3())?,
+                placement,
+            ),
+            "disk" => Shape::disk(center(&t)?, t.req("normal", |n| n.direction())?, positive(&t, "radius")?, placement),
+            "box" => {
+                let min = t.req("min", |n| n.vec3())?;
+                let max = t.req("max", |n| n.vec3())?;
+                if !min.cmplt(max).all() {
+                    return Err(t.loc("max").err(format!(
+                        "must be greater than min {} on every axis, got {}",
+                        fmt_vec(min),
+                        fmt_vec(max)
+                    )));
+                }
+                Shape::cuboid(min, max, placement)
+            }
+            "cylinder" => Shape::cylinder(
+                t.req("base", |n| n.vec3())?,
+                t.req("axis", |n| n.direction())?,
+                positive(&t, "radius")?,
+                positive(&t, "height")?,
+                placement,
+            ),
+            _ => {
+                let file = t.require("file")?;
+                let path = self.resolve(file.str()?);
+                return load_obj(&path, placement).map_err(|e| file.err(e.to_string()));
+            }
+        };
+        built.map(|s| vec![s]).map_err(|e| shape_error(&t, e, transform_loc))
+    }
+}
+
+/// A shape constructor's complaint, pointed at the parameter it names.
+fn shape_error(t: &Table<'_>, e: ShapeError, transform_loc: Option<Loc<'_>>) -> crate::SceneError {
+    let at = |key: &str| {
+        if key == "centre" || key == "center" {
+            let spelled = if t.get("centre").is_some() { "centre" } else { "center" };
+            t.loc(spelled)
+        } else {
+            t.loc(key)
+        }
+    };
+    match &e {
+        ShapeError::NotFinite { parameter, .. }
+        | ShapeError::NotPositive { parameter, .. }
+        | ShapeError::ZeroDirection { parameter, .. } => at(parameter).err(e.to_string()),
+        ShapeError::DegenerateRectangle { .. } => t.loc("edge_v").err(e.to_string()),
+        ShapeError::EmptyCuboid { .. } => t.loc("max").err(e.to_string()),
+        ShapeError::InvalidTransform { .. } => match transform_loc {
+            Some(loc) => loc.err(e.to_string()),
+            None => t.err(e.to_string()),
+        },
+    }
+}

@@ -1,0 +1,114 @@
+//! `[render]`: image size, sampling, integrator, reconstruction filter and tone mapping.
+
+use crate::reader::{num, Node, Result, Table};
+use render::film::{Curve, Filter, FilterError, ToneMap, MITCHELL_RECOMMENDED_B_C};
+use render::settings::{IntegratorKind, Intersection, RenderSettings};
+
+pub(super) const RENDER_KEYS: &[&str] = &[
+    "width",
+    "height",
+    "spp",
+    "max_depth",
+    "seed",
+    "integrator",
+    "intersection",
+    "geodesic_rtol",
+    "exposure",
+    "tonemap",
+    "filter",
+];
+
+/// The largest image side accepted (as the command line's `--width`/`--height`).
+const MAX_SIDE: u32 = 16384;
+/// The most samples per pixel accepted (as the command line's `--spp`).
+const MAX_SPP: u32 = 1 << 20;
+const MAX_DEPTH: u32 = 1024;
+
+pub(super) fn render_settings(t: &Table<'_>) -> Result<RenderSettings> {
+    let d = RenderSettings::default();
+    let integrator = match t.get("integrator") {
+        Some(n) => {
+            [IntegratorKind::Path, IntegratorKind::BruteForce][n.keyword("integrator", &["path", "brute-force"])?]
+        }
+        None => d.integrator,
+    };
+    let intersection = match t.get("intersection") {
+        Some(n) => [Intersection::Chord, Intersection::Poster][n.keyword("intersection", &["chord", "poster"])?],
+        None => d.intersection,
+    };
+    let geodesic_rtol = t.or("geodesic_rtol", d.geodesic_rtol, |n| n.f64())?;
+    if !(geodesic_rtol > 0.0 && geodesic_rtol < 1.0) {
+        return Err(t.loc("geodesic_rtol").err(format!("must be in (0, 1), got {}", num(geodesic_rtol))));
+    }
+    let curve = match t.get("tonemap") {
+        Some(n) => [Curve::Filmic, Curve::Linear][n.keyword("tone map", &["filmic", "linear"])?],
+        None => d.tonemap.curve,
+    };
+    let exposure_ev = t.or("exposure", d.tonemap.exposure_ev, |n| n.f64())?;
+    if exposure_ev.abs() > 64.0 {
+        return Err(t.loc("exposure").err(format!("must be within ±64 EV, got {}", num(exposure_ev))));
+    }
+    Ok(RenderSettings {
+        width: t.or("width", d.width, |n| n.u32_in(1, MAX_SIDE))?,
+        height: t.or("height", d.height, |n| n.u32_in(1, MAX_SIDE))?,
+        spp: t.or("spp", d.spp, |n| n.u32_in(1, MAX_SPP))?,
+        max_depth: t.or("max_depth", d.max_depth, |n| n.u32_in(0, MAX_DEPTH))?,
+        seed: t.or("seed", d.seed, |n| n.u64())?,
+        integrator,
+        intersection,
+        filter: match t.get("filter") {
+            Some(n) => filter(&n)?,
+            None => d.filter,
+        },
+        tonemap: ToneMap { exposure_ev, curve },
+        geodesic_rtol,
+    })
+}
+
+const FILTERS: &[(&str, &[&str])] = &[
+    ("box", &["radius"]),
+    ("tent", &["radius"]),
+    ("gaussian", &["radius", "sigma"]),
+    ("mitchell", &["radius", "b", "c"]),
+    ("blackman-harris", &["radius"]),
+];
+
+/// Default radius of each filter, in pixels (pbrt-v4's defaults; Blackman–Harris as Gaussian).
+const DEFAULT_RADIUS: [f64; 5] = [0.5, 2.0, 1.5, 2.0, 1.5];
+
+/// `filter = "name"` (default parameters) or `filter = { type = "name", … }`.
+fn filter(n: &Node<'_>) -> Result<Filter> {
+    let names: Vec<&str> = FILTERS.iter().map(|f| f.0).collect();
+    if n.is_str() {
+        let kind = n.keyword("filter", &names)?;
+        let r = [DEFAULT_RADIUS[kind]; 2];
+        let built = match kind {
+            0 => Filter::box_filter(r),
+            1 => Filter::tent(r),
+            2 => Filter::gaussian(r, 0.5),
+            3 => Filter::mitchell(r, MITCHELL_RECOMMENDED_B_C, MITCHELL_RECOMMENDED_B_C),
+            _ => Filter::blackman_harris(r),
+        };
+        return built.map_err(|e| n.err(e.to_string()));
+    }
+    let (kind, t) = n.tagged("filter", FILTERS)?;
+    let radius = t.or("radius", [DEFAULT_RADIUS[kind]; 2], |n| n.pair())?;
+    let built = match kind {
+        0 => Filter::box_filter(radius),
+        1 => Filter::tent(radius),
+        2 => Filter::gaussian(radius, t.or("sigma", 0.5, |n| n.f64())?),
+        3 => Filter::mitchell(
+            radius,
+            t.or("b", MITCHELL_RECOMMENDED_B_C, |n| n.f64())?,
+            t.or("c", MITCHELL_RECOMMENDED_B_C, |n| n.f64())?,
+        ),
+        _ => Filter::blackman_harris(radius),
+    };
+    built.map_err(|e| match &e {
+        FilterError::InvalidRadius { .. } => t.loc("radius").err(e.to_string()),
+        FilterError::InvalidParameter { name, .. } if ["sigma", "b", "c"].contains(name) => {
+            t.loc(name).err(e.to_string())
+        }
+        _ => t.err(e.to_string()),
+    })
+}

@@ -1,0 +1,120 @@
+//! `[sky]` and `[lower.sky]`: the radiance from infinity.
+
+use super::Builder;
+use crate::reader::{fmt_rgb, num, Node, Result, Table};
+use render::color::Rgb;
+use render::geometry::Vec3;
+use render::sky::{Equirect, Gradient, LatLongGrid, Sky, SkyFrame, StarField, StarFieldParams};
+
+const SKIES: &[(&str, &[&str])] = &[
+    ("constant", &["radiance"]),
+    ("gradient", &["horizon", "zenith", "nadir", "up"]),
+    ("equirect", &["file", "intensity", "up", "rotation_deg"]),
+    ("stars", &["density", "brightness", "seed", "star_radius_deg", "background"]),
+    ("grid", &["background", "line", "spacing_deg", "width_deg", "equator", "prime_meridian", "up", "rotation_deg"]),
+];
+
+/// A radiance: finite and ≥ 0 per channel.
+pub(super) fn radiance(n: &Node<'_>) -> Result<Rgb> {
+    let c = n.colour()?;
+    if c.min_element() < 0.0 {
+        return Err(n.err(format!("radiance must be ≥ 0 in every channel, got {}", fmt_rgb(c))));
+    }
+    Ok(c)
+}
+
+/// The sky's orientation from `up` and `rotation_deg`.
+fn frame(t: &Table<'_>) -> Result<SkyFrame> {
+    let up = t.or("up", Vec3::Y, |n| n.direction())?;
+    let rotation = t.or("rotation_deg", 0.0, |n| n.f64())?;
+    SkyFrame::new(up, rotation).map_err(|e| t.loc("up").err(e))
+}
+
+/// A non-negative number.
+fn non_negative(t: &Table<'_>, key: &str, default: f64) -> Result<f64> {
+    let x = t.or(key, default, |n| n.f64())?;
+    if x >= 0.0 {
+        Ok(x)
+    } else {
+        Err(t.loc(key).err(format!("must be ≥ 0, got {}", num(x))))
+    }
+}
+
+impl Builder<'_> {
+    pub(super) fn sky(&mut self, n: &Node<'_>) -> Result<Sky> {
+        let (kind, t) = n.tagged("sky", SKIES)?;
+        Ok(match SKIES[kind].0 {
+            "constant" => Sky::Constant(t.req("radiance", radiance)?),
+            "gradient" => {
+                let horizon = t.or("horizon", Rgb::new(0.9, 0.9, 1.0), radiance)?;
+                Sky::Gradient(Gradient {
+                    horizon,
+                    zenith: t.or("zenith", Rgb::new(0.3, 0.5, 0.9), radiance)?,
+                    nadir: t.or("nadir", horizon, radiance)?,
+                    frame: SkyFrame::new(t.or("up", Vec3::Y, |n| n.direction())?, 0.0)
+                        .map_err(|e| t.loc("up").err(e))?,
+                })
+            }
+            "equirect" => {
+                let intensity = non_negative(&t, "intensity", 1.0)?;
+                if intensity > f64::from(f32::MAX) {
+                    return Err(t.loc("intensity").err(format!("{intensity} is too large")));
+                }
+                let frame = frame(&t)?;
+                let image = self.image(&t.require("file")?)?;
+                Sky::Equirect(Equirect { image, frame, intensity: intensity as f32 })
+            }
+            "stars" => {
+                let d = StarFieldParams::default();
+                let star_radius_deg = t.or("star_radius_deg", d.star_radius_deg, |n| n.f64())?;
+                if !(star_radius_deg > 0.0 && star_radius_deg <= 2.0) {
+                    return Err(t
+                        .loc("star_radius_deg")
+                        .err(format!("must be in (0, 2] degrees, got {}", num(star_radius_deg))));
+                }
+                let params = StarFieldParams {
+                    density: non_negative(&t, "density", d.density)?,
+                    brightness: non_negative(&t, "brightness", d.brightness)?,
+                    seed: t.or("seed", d.seed, |n| n.u64())?,
+                    star_radius_deg,
+                    background: t.or("background", d.background, radiance)?,
+                };
+                // What is left to fail is density against star size: point at the density.
+                Sky::StarField(StarField::new(params).map_err(|e| t.loc("density").err(e))?)
+            }
+            _ => {
+                let background = match t.get("background") {
+                    Some(n) if n.is_array() && n.array()?.first().is_some_and(|e| e.is_array()) => {
+                        let quadrants = n.array()?;
+                        if quadrants.len() != 4 {
+                            return Err(n.err(format!(
+                                "expected one colour or 4 (one per quadrant), got {}",
+                                crate::reader::count(quadrants.len(), "colour")
+                            )));
+                        }
+                        let mut out = [Rgb::ZERO; 4];
+                        for (o, q) in out.iter_mut().zip(&quadrants) {
+                            *o = radiance(q)?;
+                        }
+                        out
+                    }
+                    Some(n) => [radiance(&n)?; 4],
+                    None => [Rgb::splat(0.05); 4],
+                };
+                let spacing_deg = t.or("spacing_deg", 10.0, |n| n.f64())?;
+                if !(spacing_deg > 0.0) {
+                    return Err(t.loc("spacing_deg").err(format!("must be > 0 degrees, got {}", num(spacing_deg))));
+                }
+                Sky::Grid(LatLongGrid {
+                    frame: frame(&t)?,
+                    background,
+                    line: t.or("line", Rgb::splat(0.9), radiance)?,
+                    spacing_deg,
+                    width_deg: non_negative(&t, "width_deg", 0.3)?,
+                    equator: t.opt("equator", radiance)?,
+                    prime_meridian: t.opt("prime_meridian", radiance)?,
+                })
+            }
+        })
+    }
+}

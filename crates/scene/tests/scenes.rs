@@ -1,0 +1,342 @@
+//! Scenes that must load, and what they must contain.
+
+mod common;
+
+use common::{scenes_dir, temp_dir, CAMERA, TINY_PNG};
+use render::color::Rgb;
+use render::film::{Curve, Filter};
+use render::material::{ConductorFresnel, Material};
+use render::settings::{IntegratorKind, Intersection};
+use render::sky::Sky;
+use render::texture::Texture;
+use spacetime::{Region, Spacetime};
+use std::path::Path;
+
+fn parse(text: &str) -> render::scene::Scene {
+    scene::parse(text, "test.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn every_bundled_scene_loads() {
+    let mut count = 0;
+    for entry in std::fs::read_dir(scenes_dir()).expect("scenes/ exists") {
+        let path = entry.expect("readable entry").path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            if let Err(e) = scene::load(&path) {
+                panic!("{e}");
+            }
+            count += 1;
+        }
+    }
+    assert!(count >= 1, "no scenes found in {}", scenes_dir().display());
+}
+
+#[test]
+fn cornell_box_has_its_published_contents() {
+    let s = scene::load(&scenes_dir().join("cornell-box.toml")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(matches!(s.spacetime, Spacetime::Minkowski(_)), "millimetres only make sense in flat space");
+    // Floor, ceiling, back, left, right, light, short block, tall block.
+    assert_eq!(s.world.objects(Region::Upper).len(), 8);
+    assert!(s.world.objects(Region::Lower).is_empty());
+    assert_eq!(s.world.light_count(Region::Upper), 1);
+    let light = s.world.objects(Region::Upper).iter().find_map(|o| o.emission).expect("a light");
+    assert_eq!(light.radiance, Rgb::new(17.0, 12.0, 4.0));
+    assert!(!light.two_sided);
+    let light_object = s.world.objects(Region::Upper).iter().find(|o| o.emission.is_some()).expect("light");
+    assert!((light_object.shape.area() - 130.0 * 105.0).abs() < 1e-6);
+    // The light faces down into the room.
+    let ray =
+        render::geometry::Ray::new(render::geometry::Vec3::new(278.0, 273.0, 279.5), render::geometry::Vec3::Y, 1e4);
+    let (i, _) = s.world.intersect(Region::Upper, &ray).expect("ceiling above");
+    let hit = s.world.surface(Region::Upper, i, &ray, s.world.intersect(Region::Upper, &ray).expect("hit").1);
+    assert!(s.world.object(Region::Upper, i).emission.is_some(), "the light hangs below the ceiling");
+    assert!(hit.ng.y < -0.999, "light normal {:?}", hit.ng);
+    assert_eq!((s.settings.width, s.settings.height, s.settings.spp, s.settings.max_depth), (256, 256, 64, 8));
+    assert_eq!(s.camera.position, render::geometry::Vec3::new(278.0, 273.0, -800.0));
+    assert_eq!(s.camera.forward(), render::geometry::Vec3::Z);
+    // Red, green, white and the light's material.
+    assert_eq!(s.world.materials.len(), 4);
+}
+
+#[test]
+fn defaults_fill_in_everything_but_the_camera() {
+    let s = parse(CAMERA);
+    assert!(matches!(s.spacetime, Spacetime::Minkowski(_)));
+    assert_eq!(s.settings.width, render::settings::RenderSettings::default().width);
+    assert!(matches!(s.world.sky(Region::Upper), Sky::Constant(c) if *c == Rgb::ZERO));
+    assert_eq!(s.camera.lens_radius, 0.0);
+    assert!((s.camera.focus_distance - 5.0).abs() < 1e-12, "focus defaults to the look_at distance");
+}
+
+#[test]
+fn spacetimes_are_built_from_their_tables() {
+    let s = parse(&format!("[spacetime]\ntype = \"schwarzschild\"\nmass = 2\n{CAMERA}"));
+    assert_eq!(s.spacetime, Spacetime::schwarzschild(2.0).unwrap());
+    let s = parse(&format!("[spacetime]\ntype = \"kerr\"\nmass = 1.0\nspin = -0.9\n{CAMERA}"));
+    assert_eq!(s.spacetime, Spacetime::kerr(1.0, -0.9).unwrap());
+    let s = parse(&format!("[spacetime]\ntype = \"minkowski\"\n{CAMERA}"));
+    assert!(matches!(s.spacetime, Spacetime::Minkowski(_)));
+}
+
+#[test]
+fn a_wormhole_has_two_regions_with_their_own_objects_and_skies() {
+    let text = r#"
+[spacetime]
+type = "ellis"
+throat = 1.5
+
+[camera]
+position = [0, 0, 10]
+look_at = [0, 0, 0]
+region = "lower"
+
+[sky]
+type = "constant"
+radiance = [0.1, 0.2, 0.3]
+
+[lower.sky]
+type = "grid"
+background = [[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0]]
+spacing_deg = 15
+
+[[objects]]
+shape = { type = "sphere", centre = [0, 0, -5], radius = 1 }
+
+[[objects]]
+shape = { type = "disk", center = [0, -2, 0], normal = [0, 1, 0], radius = 3 }
+region = "lower"
+emission = [1, 1, 1]
+
+[[objects]]
+shape = { type = "cylinder", base = [3, 0, 0], axis = [0, 1, 0], radius = 0.5, height = 2 }
+region = "lower"
+"#;
+    let s = parse(text);
+    assert_eq!(s.spacetime, Spacetime::ellis(1.5).unwrap());
+    assert_eq!(s.camera.region, Region::Lower);
+    assert_eq!(s.world.objects(Region::Upper).len(), 1);
+    assert_eq!(s.world.objects(Region::Lower).len(), 2);
+    assert_eq!(s.world.light_count(Region::Lower), 1);
+    assert!(matches!(s.world.sky(Region::Upper), Sky::Constant(c) if *c == Rgb::new(0.1, 0.2, 0.3)));
+    match s.world.sky(Region::Lower) {
+        Sky::Grid(g) => {
+            assert_eq!(g.background[2], Rgb::Z);
+            assert_eq!(g.spacing_deg, 15.0);
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn render_settings_are_read() {
+    let text = format!(
+        "{CAMERA}[render]\nwidth = 32\nheight = 16\nspp = 4\nmax_depth = 3\nseed = 9\nintegrator = \"brute-force\"\n\
+         intersection = \"poster\"\ngeodesic_rtol = 1e-6\nexposure = -1.5\ntonemap = \"filmic\"\n\
+         filter = {{ type = \"gaussian\", radius = [1.5, 2], sigma = 0.4 }}\n"
+    );
+    let s = parse(&text).settings;
+    assert_eq!((s.width, s.height, s.spp, s.max_depth, s.seed), (32, 16, 4, 3, 9));
+    assert_eq!(s.integrator, IntegratorKind::BruteForce);
+    assert_eq!(s.intersection, Intersection::Poster);
+    assert_eq!(s.geodesic_rtol, 1e-6);
+    assert_eq!(s.tonemap.exposure_ev, -1.5);
+    assert_eq!(s.tonemap.curve, Curve::Filmic);
+    match s.filter {
+        Filter::Gaussian(g) => {
+            assert_eq!(g.radius(), [1.5, 2.0]);
+            assert_eq!(g.sigma(), 0.4);
+        }
+        other => panic!("{other:?}"),
+    }
+    for name in ["box", "tent", "gaussian", "mitchell", "blackman-harris"] {
+        parse(&format!("{CAMERA}[render]\nfilter = \"{name}\"\n"));
+        parse(&format!("{CAMERA}[render]\nfilter = {{ type = \"{name}\", radius = 1 }}\n"));
+    }
+}
+
+#[test]
+fn materials_and_textures_are_read() {
+    let text = format!(
+        r#"{CAMERA}
+[materials.glass]
+type = "dielectric"
+ior = 1.33
+
+[materials.gold]
+type = "conductor"
+metal = "gold"
+roughness = 0.3
+
+[materials.custom_metal]
+type = "conductor"
+eta = [0.2, 0.4, 1.3]
+k = [3.4, 2.3, 1.7]
+
+[materials.schlick]
+type = "conductor"
+f0 = [0.9, 0.6, 0.3]
+
+[materials.paint]
+type = "plastic"
+diffuse = {{ type = "checker", a = [0.9, 0.9, 0.9], b = 0.1, uv_scale = 8 }}
+roughness = 0.2
+
+[materials.wall]
+type = "diffuse"
+[materials.wall.reflectance]
+type = "grid"
+uv_scale = [8, 4]
+spacing = 0.25
+highlights = [{{ axis = "v", index = 10, colour = [0.8, 0.05, 0.05] }}, {{ axis = "u", index = -2, color = [0, 1, 0] }}]
+
+[[objects]]
+shape = {{ type = "plane", point = [0, -1, 0], normal = [0, 1, 0] }}
+material = "wall"
+
+[[objects]]
+shape = {{ type = "sphere", center = [0, 0, 0], radius = 1 }}
+material = {{ type = "mirror" }}
+"#
+    );
+    let s = parse(&text);
+    let m = &s.world.materials;
+    // Six named, one inline.
+    assert_eq!(m.len(), 7);
+    assert!(matches!(m[0], Material::Dielectric { ior, .. } if ior == 1.33));
+    assert!(
+        matches!(m[1], Material::RoughConductor { roughness, fresnel } if roughness == 0.3 && fresnel == ConductorFresnel::preset("gold").unwrap())
+    );
+    assert!(matches!(m[2], Material::RoughConductor { fresnel: ConductorFresnel::Complex { .. }, .. }));
+    assert!(matches!(m[3], Material::RoughConductor { fresnel: ConductorFresnel::Schlick { .. }, .. }));
+    match &m[4] {
+        Material::RoughPlastic { diffuse: Texture::Checker { b, uv_scale, .. }, .. } => {
+            assert_eq!(*uv_scale, [8.0, 8.0]);
+            assert!(matches!(**b, Texture::Constant(c) if c == Rgb::splat(0.1)));
+        }
+        other => panic!("{other:?}"),
+    }
+    match &m[5] {
+        Material::Diffuse { reflectance: Texture::Grid { highlights, spacing, .. } } => {
+            assert_eq!(highlights.len(), 2);
+            assert_eq!(*spacing, 0.25);
+            assert_eq!(highlights[1].colour, Rgb::Y);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(matches!(m[6], Material::Mirror { .. }));
+    assert_eq!(s.world.objects(Region::Upper)[0].material, 5);
+    assert_eq!(s.world.objects(Region::Upper)[1].material, 6);
+}
+
+#[test]
+fn transforms_apply_scale_then_rotations_then_translation() {
+    let text = format!(
+        "{CAMERA}[[objects]]\nshape = {{ type = \"sphere\", center = [1, 0, 0], radius = 1 }}\n\
+         transform = {{ scale = 2, rotate = [{{ axis = [0, 0, 1], degrees = 90 }}, {{ axis = [1, 0, 0], degrees = 90 }}], translate = [0, 0, 10] }}\n"
+    );
+    let s = parse(&text);
+    let b = s.world.objects(Region::Upper)[0].shape.bounds();
+    // Centre (1, 0, 0) → scale (2, 0, 0) → about z (0, 2, 0) → about x (0, 0, 2) → (0, 0, 12).
+    let centre = b.centroid();
+    assert!((centre - render::geometry::Vec3::new(0.0, 0.0, 12.0)).length() < 1e-9, "{centre}");
+    assert!((b.diagonal().x - 4.0).abs() < 1e-9, "radius scaled to 2");
+}
+
+#[test]
+fn meshes_and_images_load_relative_to_the_scene_file() {
+    let dir = temp_dir("relative");
+    std::fs::create_dir_all(dir.join("assets")).unwrap();
+    std::fs::write(dir.join("assets/quad.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+    std::fs::write(dir.join("assets/tex.png"), TINY_PNG).unwrap();
+    let text = format!(
+        r#"{CAMERA}
+[sky]
+type = "equirect"
+file = "assets/tex.png"
+intensity = 2
+
+[[objects]]
+shape = {{ type = "mesh", file = "assets/quad.obj" }}
+material = {{ type = "diffuse", reflectance = {{ type = "image", file = "assets/tex.png" }} }}
+transform = {{ translate = [0, 0, -1] }}
+"#
+    );
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    let s = scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.world.objects(Region::Upper).len(), 2, "a quad is two triangles");
+    match &s.world.materials[0] {
+        Material::Diffuse { reflectance: Texture::Image { image, .. } } => assert_eq!(image.width(), 2),
+        other => panic!("{other:?}"),
+    }
+    assert!(matches!(s.world.sky(Region::Upper), Sky::Equirect(e) if e.intensity == 2.0));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn all_skies_parse() {
+    for sky in [
+        "type = \"constant\"\nradiance = 0.5",
+        "type = \"gradient\"\nzenith = [0.1, 0.2, 0.9]\nup = [0, 0, 1]",
+        "type = \"stars\"\ndensity = 500\nseed = 3\nbackground = [0.001, 0.001, 0.002]",
+        "type = \"grid\"\nbackground = 0.1\nequator = [1, 0, 1]\nrotation_deg = 30",
+    ] {
+        parse(&format!("{CAMERA}[sky]\n{sky}\n"));
+    }
+}
+
+/// Every TOML example in docs/scene-format.md is valid: whole documents as they are, table
+/// fragments after a camera, and one-line fragments (`shape = …`) inside an object. Only files the
+/// examples name (images, meshes) may be missing.
+#[test]
+fn documentation_examples_parse() {
+    let doc_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md");
+    let doc = std::fs::read_to_string(&doc_path).expect("docs/scene-format.md");
+    let mut blocks = Vec::new();
+    let mut current: Option<String> = None;
+    for line in doc.lines() {
+        match (&mut current, line.trim_start()) {
+            (None, "```toml") => current = Some(String::new()),
+            (Some(block), "```") => {
+                blocks.push(std::mem::take(block));
+                current = None;
+            }
+            (Some(block), _) => {
+                block.push_str(line);
+                block.push('\n');
+            }
+            (None, _) => {}
+        }
+    }
+    assert!(blocks.len() > 20, "found {} examples", blocks.len());
+    let sphere = "shape = { type = \"sphere\", center = [0, 0, 0], radius = 1 }";
+    let mut documents = Vec::new();
+    for block in &blocks {
+        let first = block.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with('#')).unwrap_or("");
+        if first.starts_with('[') {
+            let mut text = block.clone();
+            if !text.contains("[camera]") {
+                text.push_str(CAMERA);
+            }
+            if text.contains("[lower.") && !text.contains("[spacetime]") {
+                text.push_str("[spacetime]\ntype = \"ellis\"\nthroat = 1\n");
+            }
+            documents.push(text);
+        } else {
+            for line in block.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#')) {
+                let text = match line.split_whitespace().next() {
+                    Some("shape") => format!("[[objects]]\n{line}\n"),
+                    Some("filter") => format!("[render]\n{line}\n"),
+                    _ => format!("[[objects]]\n{sphere}\n{line}\n"),
+                };
+                documents.push(format!("{CAMERA}{text}"));
+            }
+        }
+    }
+    for text in documents {
+        if let Err(e) = scene::parse(&text, "docs example", Path::new(".")) {
+            let m = e.to_string();
+            assert!(m.contains("cannot load image") || m.contains("cannot open mesh file"), "{m}\nin:\n{text}");
+        }
+    }
+}

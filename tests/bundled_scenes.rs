@@ -1,0 +1,36 @@
+//! Every bundled scene renders at a tiny size with no NaN sample and no failed ray.
+
+#![allow(clippy::unwrap_used)] // A panic is a failed test.
+
+use std::sync::atomic::AtomicBool;
+
+#[test]
+fn every_bundled_scene_renders() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    assert!(!paths.is_empty());
+    for path in paths {
+        let mut scene = scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        scene.settings.width = 12;
+        scene.settings.height = 10;
+        scene.settings.spp = 2;
+        scene.settings.max_depth = scene.settings.max_depth.min(4);
+        let (film, stats) = render::renderer::render(&scene, &AtomicBool::new(false), &|_, _| {});
+        let name = path.display();
+        assert_eq!(stats.nan_samples, 0, "{name}: NaN samples");
+        assert_eq!(stats.paths.fates.failed, 0, "{name}: failed rays");
+        assert_eq!(stats.samples, 12 * 10 * 2, "{name}");
+        let mut sum = 0.0;
+        for y in 0..10 {
+            for x in 0..12 {
+                sum += film.pixel(x, y).element_sum();
+            }
+        }
+        assert!(sum > 0.0, "{name}: the image is black");
+    }
+}

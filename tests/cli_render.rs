@@ -1,0 +1,99 @@
+//! `nullpath render` as a user runs it: the default scene, statistics, determinism across
+//! thread counts, interruption, and errors for bad input.
+
+#![allow(clippy::unwrap_used)] // A panic is a failed test.
+
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+
+fn nullpath() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_nullpath"))
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("nullpath-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn default_scene_renders_with_statistics() {
+    let (out, stats) = (temp("default.png"), temp("default.json"));
+    let status = nullpath()
+        .args(["render", "-o", out.to_str().unwrap(), "--width", "24", "--height", "24", "--spp", "2"])
+        .args(["--stats", stats.to_str().unwrap(), "--quiet"])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (24, 24));
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    for key in ["rays", "samples", "seconds", "nan_samples"] {
+        assert!(v[key].is_number(), "{key} in {v}");
+    }
+    for fate in ["escaped", "captured", "absorbed", "traversed", "failed"] {
+        assert!(v["fates"][fate].is_u64(), "fates.{fate} in {v}");
+    }
+    assert_eq!(v["samples"], 24 * 24 * 2);
+    assert_eq!(v["nan_samples"], 0);
+}
+
+#[test]
+fn one_and_two_threads_give_the_same_image() {
+    let render = |threads: &str| {
+        let out = temp(&format!("threads-{threads}.exr"));
+        let status = nullpath()
+            .args(["render", "-o", out.to_str().unwrap(), "--width", "20", "--height", "16", "--spp", "3"])
+            .args(["--seed", "11", "--threads", threads, "--quiet"])
+            .status()
+            .unwrap();
+        assert!(status.success());
+        std::fs::read(out).unwrap()
+    };
+    assert_eq!(render("1"), render("2"));
+}
+
+#[test]
+fn bad_input_fails_with_a_precise_message_and_no_panic() {
+    let dir = temp("bad");
+    std::fs::create_dir_all(&dir).unwrap();
+    let unknown = dir.join("unknown.toml");
+    std::fs::write(&unknown, "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 40\nzoom = 2\n").unwrap();
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (vec!["render".into(), dir.join("missing.toml").display().to_string()], "missing.toml"),
+        (vec!["render".into(), unknown.display().to_string()], "zoom"),
+        (vec!["render".into(), "-o".into(), dir.join("x.bmp").display().to_string()], "x.bmp"),
+        (vec!["render".into(), "-o".into(), dir.join("no/such/dir/x.png").display().to_string()], "no/such/dir"),
+        (vec!["render".into(), "--spp".into(), "0".into()], "--spp"),
+    ];
+    for (args, needle) in cases {
+        let out = nullpath().args(&args).output().unwrap();
+        assert!(!out.status.success(), "{args:?} should fail");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+    // The unknown field is reported with its line.
+    let out = nullpath().args(["render", unknown.to_str().unwrap()]).output().unwrap();
+    assert!(String::from_utf8_lossy(&out.stderr).contains(":5"), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[cfg(unix)]
+#[test]
+fn interrupting_a_render_keeps_what_was_computed() {
+    let out = temp("interrupted.png");
+    let _ = std::fs::remove_file(&out);
+    let child = nullpath()
+        .args(["render", "-o", out.to_str().unwrap(), "--width", "256", "--height", "256", "--spp", "4096", "--quiet"])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    let result = child.wait_with_output().unwrap();
+    assert!(!result.status.success(), "an interrupted render reports failure");
+    let err = String::from_utf8_lossy(&result.stderr);
+    assert!(err.contains("interrupted"), "{err}");
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (256, 256));
+}
