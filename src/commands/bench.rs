@@ -12,7 +12,13 @@ pub enum Workload {
     Geodesics,
     /// The Cornell box at 256², 64 samples per pixel, path depth 8.
     Cornell,
+    /// The poster's room with its black hole, and the same room with mass 0 (256², 64 spp,
+    /// depth 8): the ratio of their times is the cost of curved spacetime.
+    Room,
 }
+
+/// The room scene, bundled with the binary so the benchmark runs anywhere.
+const ROOM_SCENE: &str = include_str!("../../scenes/room-black-hole.toml");
 
 #[derive(Parser, Debug)]
 pub struct Args {
@@ -72,14 +78,27 @@ pub fn run(args: &Args) -> Result<(), String> {
     }
     match args.workload {
         Workload::Geodesics => geodesics(args),
-        Workload::Cornell => scene_bench(args, "cornell", None),
+        Workload::Cornell => scene_bench(args, "cornell", super::render::load_scene(None)?).map(|_| ()),
+        Workload::Room => {
+            let curved = scene::parse(ROOM_SCENE, "scenes/room-black-hole.toml", std::path::Path::new("."))
+                .map_err(|e| e.to_string())?;
+            let flat = render::scene::Scene {
+                spacetime: spacetime::Spacetime::Minkowski(spacetime::Minkowski),
+                ..curved.clone()
+            };
+            let t_curved = scene_bench(args, "room (black hole)", curved)?;
+            let t_flat = scene_bench(args, "room (mass 0)", flat)?;
+            if !args.json {
+                println!("curved ÷ flat time, all threads: {:.2}", t_curved / t_flat);
+            }
+            Ok(())
+        }
     }
 }
 
-/// Renders a bundled scene at `size`², 64 spp, depth 8, on one thread and on all, and reports
-/// samples per second.
-fn scene_bench(args: &Args, name: &str, path: Option<&std::path::Path>) -> Result<(), String> {
-    let mut scene = super::render::load_scene(path)?;
+/// Renders `scene` at `size`², 64 spp, depth 8, on one thread and on all, reports samples per
+/// second, and returns the best time on all threads.
+fn scene_bench(args: &Args, name: &str, mut scene: render::scene::Scene) -> Result<f64, String> {
     let size = args.size.unwrap_or(256);
     scene.settings.width = size;
     scene.settings.height = size;
@@ -129,7 +148,7 @@ fn scene_bench(args: &Args, name: &str, path: Option<&std::path::Path>) -> Resul
             );
         }
     }
-    Ok(())
+    Ok(rows.last().map_or(f64::NAN, |(_, s)| s.seconds))
 }
 
 fn geodesics(args: &Args) -> Result<(), String> {

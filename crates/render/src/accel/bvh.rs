@@ -301,60 +301,38 @@ impl Bvh {
     /// primitive whose node boxes overlap it (and for every unbounded one) and decides exactly.
     /// Used to skip refining curved ray steps far from everything.
     pub fn any_near(&self, query: &Aabb, mut near: impl FnMut(usize) -> bool) -> bool {
-        if self.unbounded.iter().any(|&i| near(i as usize)) {
-            return true;
-        }
-        if self.nodes.is_empty() {
-            return false;
-        }
         let overlaps =
             |n: &Node| (0..3).all(|k| f64::from(n.min[k]) <= query.max[k] && f64::from(n.max[k]) >= query.min[k]);
-        let mut stack = [0u32; STACK];
-        let mut top = 0;
-        let mut node = 0usize;
-        loop {
-            let n = &self.nodes[node];
-            if overlaps(n) {
-                if n.count > 0 {
-                    let first = n.offset as usize;
-                    if self.order[first..first + n.count as usize].iter().any(|&i| near(i as usize)) {
-                        return true;
-                    }
-                } else {
-                    stack[top] = n.offset;
-                    top += 1;
-                    node += 1;
-                    continue;
-                }
-            }
-            if top == 0 {
-                return false;
-            }
-            top -= 1;
-            node = stack[top] as usize;
-        }
+        self.any_primitive(overlaps, &mut near)
     }
 
     /// Whether any primitive is hit by `ray` (a shadow or visibility query): stops at the first
     /// `hit(i, ray)` that returns true.
     pub fn any_hit(&self, ray: &Ray, mut hit: impl FnMut(usize, &Ray) -> bool) -> bool {
-        if self.unbounded.iter().any(|&i| hit(i as usize, ray)) {
+        let inv_dir = ray.dir.recip();
+        let dir_is_neg = [inv_dir.x < 0.0, inv_dir.y < 0.0, inv_dir.z < 0.0];
+        self.any_primitive(|n| slab_hit(n, ray.origin, inv_dir, dir_is_neg, ray.t_max), |i| hit(i, ray))
+    }
+
+    /// Depth-first search, in any order, for a primitive `accept` approves, among the unbounded
+    /// ones and those in the leaves of nodes `enter` lets in.
+    #[inline(always)]
+    fn any_primitive(&self, enter: impl Fn(&Node) -> bool, mut accept: impl FnMut(usize) -> bool) -> bool {
+        if self.unbounded.iter().any(|&i| accept(i as usize)) {
             return true;
         }
         if self.nodes.is_empty() {
             return false;
         }
-        let inv_dir = ray.dir.recip();
-        let dir_is_neg = [inv_dir.x < 0.0, inv_dir.y < 0.0, inv_dir.z < 0.0];
         let mut stack = [0u32; STACK];
         let mut top = 0;
         let mut node = 0usize;
         loop {
             let n = &self.nodes[node];
-            if slab_hit(n, ray.origin, inv_dir, dir_is_neg, ray.t_max) {
+            if enter(n) {
                 if n.count > 0 {
                     let first = n.offset as usize;
-                    if self.order[first..first + n.count as usize].iter().any(|&i| hit(i as usize, ray)) {
+                    if self.order[first..first + n.count as usize].iter().any(|&i| accept(i as usize)) {
                         return true;
                     }
                 } else {

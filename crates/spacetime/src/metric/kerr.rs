@@ -9,10 +9,9 @@
 //! the past horizon, which backward-traced rays cross. The ring singularity (r = 0, z = 0) lies
 //! inside the horizon, where rays are stopped.
 
-use super::kerr_schild::KerrSchildPoint;
+use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::user::Scalar;
-use super::Metric;
-use crate::tensor::{Covector4, Matrix4, Vector4};
+use crate::tensor::Vector4;
 use num_dual::DualSVec64;
 
 /// Kerr spacetime.
@@ -41,17 +40,14 @@ impl Kerr {
         Self { mass, spin }
     }
 
-    /// Outer horizon `r₊ = M + √(M² − a²)`.
-    pub fn horizon_radius(&self) -> f64 {
-        self.mass + (self.mass * self.mass - self.spin * self.spin).max(0.0).sqrt()
-    }
-
     /// Spheroidal radius `r` of a spatial point.
     pub fn spheroidal_radius(&self, x: &Vector4) -> f64 {
         kerr_schild_fields::<f64>(self.mass, self.spin, x[1], x[2], x[3]).0
     }
+}
 
-    fn point(&self, x: &Vector4) -> KerrSchildPoint {
+impl KerrSchild for Kerr {
+    fn fields(&self, x: &Vector4) -> KerrSchildPoint {
         let var = |i: usize, v: f64| DualSVec64::<3>::from_re(v).derivative(i);
         let (_, f, k) = kerr_schild_fields(self.mass, self.spin, var(0, x[1]), var(1, x[2]), var(2, x[3]));
         let grad = |d: &DualSVec64<3>| {
@@ -66,46 +62,25 @@ impl Kerr {
             dk: std::array::from_fn(|i| std::array::from_fn(|j| dk_by_component[j][i])),
         }
     }
-}
 
-impl Metric for Kerr {
-    fn metric(&self, x: &Vector4) -> Matrix4 {
-        self.point(x).metric()
+    fn mass(&self) -> f64 {
+        self.mass
     }
 
-    fn inverse_metric(&self, x: &Vector4) -> Matrix4 {
-        self.point(x).inverse_metric()
-    }
-
-    fn inverse_metric_derivatives(&self, x: &Vector4) -> (Matrix4, [Matrix4; 4]) {
-        let pt = self.point(x);
-        (pt.inverse_metric(), pt.inverse_metric_derivatives())
-    }
-
-    fn geodesic_rhs(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
-        self.point(x).geodesic_rhs(p)
-    }
-
-    fn hamiltonian(&self, x: &Vector4, p: &Covector4) -> f64 {
-        self.point(x).hamiltonian(p)
-    }
-
-    fn length_scale(&self) -> f64 {
-        self.mass.max(f64::MIN_POSITIVE)
-    }
-
-    fn radius(&self, x: &Vector4) -> f64 {
+    fn radial_coordinate(&self, x: &Vector4) -> f64 {
         self.spheroidal_radius(x)
     }
 
-    fn inside_horizon(&self, x: &Vector4) -> bool {
-        self.spheroidal_radius(x) <= self.horizon_radius()
+    /// Outer horizon `r₊ = M + √(M² − a²)`.
+    fn horizon_radius(&self) -> f64 {
+        self.mass + (self.mass * self.mass - self.spin * self.spin).max(0.0).sqrt()
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::metric::Metric;
     use crate::metric::Schwarzschild;
 
     #[test]

@@ -5,6 +5,7 @@
 //! outgoing form: past-directed rays cross the (past) horizon smoothly, which is what backward
 //! tracing needs.
 
+use super::Metric;
 use crate::tensor::{Covector4, Matrix4, Vector4, ETA};
 
 /// The data of one Kerr–Schild metric at one point: `f`, the spatial unit vector `k` with
@@ -71,5 +72,53 @@ impl KerrSchildPoint {
     pub fn hamiltonian(&self, p: &Covector4) -> f64 {
         let q = -p[0] - (self.k[0] * p[1] + self.k[1] * p[2] + self.k[2] * p[3]);
         0.5 * (-p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]) - 0.5 * self.f * q * q
+    }
+}
+
+/// A stationary metric in Kerr–Schild form. Everything [`Metric`] asks for follows from the
+/// fields at a point, the mass and the horizon, so the metrics only provide those.
+pub trait KerrSchild: Send + Sync {
+    /// `f`, `k` and their derivatives at `x`.
+    fn fields(&self, x: &Vector4) -> KerrSchildPoint;
+    fn mass(&self) -> f64;
+    /// The radial coordinate of the metric (areal for Schwarzschild, spheroidal for Kerr).
+    fn radial_coordinate(&self, x: &Vector4) -> f64;
+    /// Radius of the (outer) event horizon in that coordinate.
+    fn horizon_radius(&self) -> f64;
+}
+
+impl<T: KerrSchild> Metric for T {
+    fn metric(&self, x: &Vector4) -> Matrix4 {
+        self.fields(x).metric()
+    }
+
+    fn inverse_metric(&self, x: &Vector4) -> Matrix4 {
+        self.fields(x).inverse_metric()
+    }
+
+    fn inverse_metric_derivatives(&self, x: &Vector4) -> (Matrix4, [Matrix4; 4]) {
+        let pt = self.fields(x);
+        (pt.inverse_metric(), pt.inverse_metric_derivatives())
+    }
+
+    #[inline]
+    fn geodesic_rhs(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
+        self.fields(x).geodesic_rhs(p)
+    }
+
+    fn hamiltonian(&self, x: &Vector4, p: &Covector4) -> f64 {
+        self.fields(x).hamiltonian(p)
+    }
+
+    fn length_scale(&self) -> f64 {
+        self.mass().max(f64::MIN_POSITIVE)
+    }
+
+    fn radius(&self, x: &Vector4) -> f64 {
+        self.radial_coordinate(x)
+    }
+
+    fn inside_horizon(&self, x: &Vector4) -> bool {
+        self.radial_coordinate(x) <= self.horizon_radius()
     }
 }

@@ -16,6 +16,7 @@ pub(crate) mod user;
 pub use builtin::{ParameterError, Spacetime};
 pub use ellis::Ellis;
 pub use kerr::Kerr;
+pub use kerr_schild::{KerrSchild, KerrSchildPoint};
 pub use minkowski::Minkowski;
 pub use schwarzschild::Schwarzschild;
 pub use user::{MetricFunction, Scalar, UserMetric};

@@ -4,10 +4,9 @@
 //! No poles, and the horizon `r = 2M` is an ordinary place in this chart, so a backward-traced
 //! ray that falls in crosses it and is stopped there.
 
-use super::kerr_schild::KerrSchildPoint;
-use super::Metric;
+use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use crate::geodesic::plane::PlaneMetric;
-use crate::tensor::{norm3, spatial, Covector4, Matrix4, Vector4};
+use crate::tensor::{norm3, spatial, Vector4};
 
 /// Schwarzschild spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,14 +18,12 @@ impl Schwarzschild {
     pub fn new(mass: f64) -> Self {
         Self { mass }
     }
+}
 
-    pub fn horizon_radius(&self) -> f64 {
-        2.0 * self.mass
-    }
-
+impl KerrSchild for Schwarzschild {
     /// `f = 2M/r`, `k = x/r`, `∂_i f = −2M x_i/r³`, `∂_i k_j = (δ_ij − k_i k_j)/r`.
     #[inline]
-    fn point(&self, x: &Vector4) -> KerrSchildPoint {
+    fn fields(&self, x: &Vector4) -> KerrSchildPoint {
         let r = norm3(&spatial(x));
         let inv_r = 1.0 / r;
         let k = [x[1] * inv_r, x[2] * inv_r, x[3] * inv_r];
@@ -36,37 +33,17 @@ impl Schwarzschild {
             std::array::from_fn(|i| std::array::from_fn(|j| (if i == j { 1.0 } else { 0.0 } - k[i] * k[j]) * inv_r));
         KerrSchildPoint { f, k, df, dk }
     }
-}
 
-impl Metric for Schwarzschild {
-    fn metric(&self, x: &Vector4) -> Matrix4 {
-        self.point(x).metric()
+    fn mass(&self) -> f64 {
+        self.mass
     }
 
-    fn inverse_metric(&self, x: &Vector4) -> Matrix4 {
-        self.point(x).inverse_metric()
+    fn radial_coordinate(&self, x: &Vector4) -> f64 {
+        norm3(&spatial(x))
     }
 
-    fn inverse_metric_derivatives(&self, x: &Vector4) -> (Matrix4, [Matrix4; 4]) {
-        let pt = self.point(x);
-        (pt.inverse_metric(), pt.inverse_metric_derivatives())
-    }
-
-    #[inline]
-    fn geodesic_rhs(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
-        self.point(x).geodesic_rhs(p)
-    }
-
-    fn hamiltonian(&self, x: &Vector4, p: &Covector4) -> f64 {
-        self.point(x).hamiltonian(p)
-    }
-
-    fn length_scale(&self) -> f64 {
-        self.mass.max(f64::MIN_POSITIVE)
-    }
-
-    fn inside_horizon(&self, x: &Vector4) -> bool {
-        norm3(&spatial(x)) <= self.horizon_radius()
+    fn horizon_radius(&self) -> f64 {
+        2.0 * self.mass
     }
 }
 
@@ -112,6 +89,7 @@ impl PlaneMetric for Schwarzschild {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::metric::Metric;
 
     #[test]
     fn conformance() {
