@@ -19,7 +19,7 @@ use crate::world::World;
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
 use spacetime::geodesic::{HamiltonianStep, HamiltonianTracer, Integrator, State, TraceSettings};
 use spacetime::metric::Metric;
-use spacetime::{Ellis, Fate, Kerr, Region, Schwarzschild, Spacetime, Tetrad, Visit};
+use spacetime::{Fate, Kerr, Region, Spacetime, Tetrad, Visit};
 
 /// Where a traced ray ended.
 #[derive(Clone, Copy, Debug)]
@@ -98,15 +98,15 @@ impl Propagator {
         }
     }
 
-    /// The radial scale `κ = dρ/dl` of the static frame at world point `p`: world radial
-    /// lengths per proper radial length (1 in flat space, `√(1 − 2M/r)` for Schwarzschild,
-    /// `|l|/ρ` for Ellis). Tangential lengths are proper in world units.
+    /// The radial scale `κ = dρ/dl` of the static frame at world point `p` (1 in flat space).
     fn radial_scale(&self, p: Vec3) -> f64 {
-        let rho = p.length();
-        match self.spacetime {
-            Spacetime::Schwarzschild(m) => (1.0 - 2.0 * m.mass / rho).max(0.0).sqrt(),
-            Spacetime::Ellis(m) => ((rho - m.throat) * (rho + m.throat)).max(0.0).sqrt() / rho,
-            Spacetime::Minkowski(_) | Spacetime::Kerr(_) => 1.0,
+        fn at<M: PlaneMetric>(m: &M, p: Vec3) -> f64 {
+            m.u_of_world_radius(p.length()).map_or(1.0, |u| m.radial_scale(u))
+        }
+        match &self.spacetime {
+            Spacetime::Schwarzschild(m) if m.mass > 0.0 => at(m, p),
+            Spacetime::Ellis(m) => at(m, p),
+            _ => 1.0,
         }
     }
 
@@ -139,7 +139,7 @@ impl Propagator {
         }
     }
 
-    fn in_plane<M: PlaneMetric + Lapse>(
+    fn in_plane<M: PlaneMetric>(
         &self,
         metric: &M,
         world: &World,
@@ -150,7 +150,8 @@ impl Propagator {
         let Some(start) = PlaneStart::from_observer(metric, region, origin.to_array(), direction.to_array()) else {
             return RayEnd::Captured;
         };
-        let lapse0 = metric.lapse(origin.length());
+        let lapse = |p: Vec3| metric.u_of_world_radius(p.length()).map_or(1.0, |u| metric.lapse(u));
+        let lapse0 = lapse(origin);
         let mut arrival: Option<(ChordHit, Vec3, Region)> = None;
         let mut last = origin;
         let t = trace_plane(metric, start, &self.trace, |step| {
@@ -181,7 +182,7 @@ impl Propagator {
             Fate::Stopped => {
                 let Some((found, direction, region)) = arrival else { return RayEnd::Failed };
                 let hit = world.surface(region, found.object, &found.chord, found.t);
-                let energy = lapse0 / metric.lapse(hit.p.length());
+                let energy = lapse0 / lapse(hit.p);
                 RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy })
             }
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
@@ -328,24 +329,6 @@ struct ChordHit {
     chord: Ray,
     t: f64,
     theta: f64,
-}
-
-/// Lapse `α = √(−g_tt)` of the static observer at areal radius `rho`: energies measured by
-/// static observers scale as `1/α` along a ray.
-pub trait Lapse {
-    fn lapse(&self, rho: f64) -> f64;
-}
-
-impl Lapse for Schwarzschild {
-    fn lapse(&self, rho: f64) -> f64 {
-        (1.0 - 2.0 * self.mass / rho).max(0.0).sqrt()
-    }
-}
-
-impl Lapse for Ellis {
-    fn lapse(&self, _rho: f64) -> f64 {
-        1.0
-    }
 }
 
 fn other(region: Region) -> Region {

@@ -35,6 +35,12 @@ pub trait PlaneMetric: Metric {
     fn world_radius(&self, u: f64) -> f64;
     /// Inverse of [`PlaneMetric::world_radius`]; `None` inside a throat.
     fn u_of_world_radius(&self, rho: f64) -> Option<f64>;
+    /// Lapse `α = √(−g_tt)` of the static observer at `u`: the energy it measures for a photon of
+    /// conserved energy `E` is `E/α`.
+    fn lapse(&self, u: f64) -> f64;
+    /// `κ = dρ/dl` at `u`: world (areal) radial length per proper radial length. World tangential
+    /// lengths are proper, so the static frame differs from world axes by this radial factor.
+    fn radial_scale(&self, u: f64) -> f64;
     /// `u` of the horizon: rays reaching it are captured.
     fn capture_u(&self) -> Option<f64> {
         None
@@ -260,8 +266,30 @@ impl PlaneStep {
 fn sin_cos_small(x: f64) -> (f64, f64) {
     debug_assert!(x.abs() <= 1.0 + 1e-12);
     /// (−1)ⁿ/(2n+1)! and (−1)ⁿ/(2n)!, n = 0…9.
-    const SIN: [f64; 10] = [1.0, -0.16666666666666666, 0.008333333333333333, -0.0001984126984126984, 2.7557319223985893e-06, -2.505210838544172e-08, 1.6059043836821613e-10, -7.647163731819816e-13, 2.8114572543455206e-15, -8.22063524662433e-18];
-    const COS: [f64; 10] = [1.0, -0.5, 0.041666666666666664, -0.001388888888888889, 2.48015873015873e-05, -2.755731922398589e-07, 2.08767569878681e-09, -1.1470745597729725e-11, 4.779477332387385e-14, -1.5619206968586225e-16];
+    const SIN: [f64; 10] = [
+        1.0,
+        -0.16666666666666666,
+        0.008333333333333333,
+        -0.0001984126984126984,
+        2.7557319223985893e-06,
+        -2.505210838544172e-08,
+        1.6059043836821613e-10,
+        -7.647163731819816e-13,
+        2.8114572543455206e-15,
+        -8.22063524662433e-18,
+    ];
+    const COS: [f64; 10] = [
+        1.0,
+        -0.5,
+        0.041666666666666664,
+        -0.001388888888888889,
+        2.48015873015873e-05,
+        -2.755731922398589e-07,
+        2.08767569878681e-09,
+        -1.1470745597729725e-11,
+        4.779477332387385e-14,
+        -1.5619206968586225e-16,
+    ];
     let x2 = x * x;
     let (mut s, mut c) = (0.0, 0.0);
     for n in (0..10).rev() {

@@ -187,6 +187,16 @@ impl PlaneMetric for Ellis {
         (rho >= self.throat).then(|| 1.0 / self.isotropic_radius(((rho - self.throat) * (rho + self.throat)).sqrt()))
     }
 
+    fn lapse(&self, _u: f64) -> f64 {
+        1.0
+    }
+
+    /// `dρ/dl = |l|/ρ = (1 − b₀²u²)/(1 + b₀²u²)` (the same for `ũ` in the lower region).
+    fn radial_scale(&self, u: f64) -> f64 {
+        let b2u2 = self.throat * self.throat * u * u;
+        ((1.0 - b2u2) / (1.0 + b2u2)).abs()
+    }
+
     fn throat_u(&self) -> Option<f64> {
         Some(1.0 / self.throat)
     }
@@ -212,6 +222,18 @@ mod tests {
             assert!((m.proper_radial(s) - l).abs() < 1e-12 * (1.0 + l.abs()), "l = {l}");
             let x = [0.0, s, 0.0, 0.0];
             assert!((m.radius(&x) - l.hypot(2.0)).abs() < 1e-12 * (1.0 + l.abs()));
+        }
+    }
+
+    #[test]
+    fn radial_scale_is_areal_radius_per_proper_length() {
+        let m = Ellis::new(1.3);
+        for l in [-20.0, -2.0, -0.4, 0.3, 1.0, 9.0] {
+            let h = 1e-6;
+            let rho = |l: f64| l.hypot(1.3);
+            let fd = (rho(l + h) - rho(l - h)).abs() / (2.0 * h);
+            let u = 1.0 / m.isotropic_radius(l.abs());
+            assert!((m.radial_scale(u) - fd).abs() < 1e-8, "l = {l}");
         }
     }
 

@@ -60,6 +60,14 @@ impl PlaneMetric for Minkowski {
         (rho > 0.0).then(|| 1.0 / rho)
     }
 
+    fn lapse(&self, _u: f64) -> f64 {
+        1.0
+    }
+
+    fn radial_scale(&self, _u: f64) -> f64 {
+        1.0
+    }
+
     fn is_flat(&self) -> bool {
         true
     }

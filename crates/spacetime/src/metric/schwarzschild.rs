@@ -81,6 +81,15 @@ impl PlaneMetric for Schwarzschild {
         (rho > 0.0).then(|| 1.0 / rho)
     }
 
+    fn lapse(&self, u: f64) -> f64 {
+        (1.0 - 2.0 * self.mass * u).max(0.0).sqrt()
+    }
+
+    /// `dr/dl = √(1 − 2M/r)`.
+    fn radial_scale(&self, u: f64) -> f64 {
+        self.lapse(u)
+    }
+
     fn capture_u(&self) -> Option<f64> {
         (self.mass > 0.0).then(|| 1.0 / self.horizon_radius())
     }
