@@ -18,6 +18,7 @@ use crate::shape::SurfaceHit;
 use crate::world::World;
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
 use spacetime::geodesic::{HamiltonianStep, HamiltonianTracer, Integrator, State, TraceSettings};
+use spacetime::metric::KerrSchild;
 use spacetime::metric::Metric;
 use spacetime::{Fate, Kerr, Region, Spacetime, Tetrad, Visit};
 
@@ -68,11 +69,19 @@ impl Propagator {
     pub fn new(spacetime: Spacetime, scene_radius: f64, rtol: f64, intersection: Intersection) -> Self {
         let scale = spacetime.length_scale();
         let escape_radius = (2.0 * scene_radius).max(100.0 * scale);
-        let trace = TraceSettings {
-            integrator: Integrator::Adaptive { rtol },
-            escape_radius,
-            max_step_fraction: 0.5,
-            max_steps: 1_000_000,
+        let trace = match intersection {
+            Intersection::Chord => TraceSettings {
+                integrator: Integrator::Adaptive { rtol },
+                escape_radius,
+                max_step_fraction: 0.5,
+                max_steps: 1_000_000,
+            },
+            Intersection::Poster { step, max_iterations } => TraceSettings {
+                integrator: Integrator::Rk4 { step },
+                escape_radius,
+                max_step_fraction: f64::INFINITY,
+                max_steps: max_iterations,
+            },
         };
         let epsilon = 1e-4 * scene_radius.max(scale);
         Self { spacetime, trace, epsilon, intersection, to_chart: glam::DQuat::IDENTITY }
@@ -133,6 +142,10 @@ impl Propagator {
             Spacetime::Minkowski(_) => straight(world, region, origin, direction),
             Spacetime::Schwarzschild(m) if m.mass == 0.0 => straight(world, region, origin, direction),
             Spacetime::Kerr(m) if m.mass == 0.0 => straight(world, region, origin, direction),
+            // The poster integrated Hamilton's equations with RK4 in an affine parameter.
+            Spacetime::Schwarzschild(m) if matches!(self.intersection, Intersection::Poster { .. }) => {
+                self.hamiltonian(m, world, region, origin, direction)
+            }
             Spacetime::Schwarzschild(m) => self.in_plane(m, world, region, origin, direction),
             Spacetime::Ellis(m) => self.in_plane(m, world, region, origin, direction),
             Spacetime::Kerr(m) => self.hamiltonian(m, world, region, origin, direction),
@@ -200,7 +213,7 @@ impl Propagator {
     fn curved(&self, world: &World, region: Region, point: &dyn Fn(f64) -> Vec3) -> Option<ChordHit> {
         match self.intersection {
             Intersection::Chord => self.curved_span(world, region, point, (0.0, point(0.0)), (1.0, point(1.0)), 0),
-            Intersection::Poster => self.sign_change(world, region, point),
+            Intersection::Poster { .. } => self.sign_change(world, region, point),
         }
     }
 
@@ -283,7 +296,14 @@ impl Propagator {
 
     /// The 4-D tracer, in the chart's axes: world vectors are rotated in with `to_chart` and
     /// chord points rotated back out.
-    fn hamiltonian(&self, metric: &Kerr, world: &World, region: Region, origin: Vec3, direction: Vec3) -> RayEnd {
+    fn hamiltonian<M: KerrSchild>(
+        &self,
+        metric: &M,
+        world: &World,
+        region: Region,
+        origin: Vec3,
+        direction: Vec3,
+    ) -> RayEnd {
         let (to_chart, to_world) = (self.to_chart, self.to_chart.inverse());
         let Some(x) = metric.world_to_chart(region, (to_chart * origin).to_array(), 0.0) else { return RayEnd::Failed };
         let Ok(frame) = Tetrad::local_observer(metric, &x) else { return RayEnd::Captured };

@@ -131,13 +131,13 @@ region = "lower"
 fn render_settings_are_read() {
     let text = format!(
         "{CAMERA}[render]\nwidth = 32\nheight = 16\nspp = 4\nmax_depth = 3\nseed = 9\nintegrator = \"brute-force\"\n\
-         intersection = \"poster\"\ngeodesic_rtol = 1e-6\nexposure = -1.5\ntonemap = \"filmic\"\n\
+         intersection = \"poster\"\nposter_step = 0.25\nposter_max_iterations = 800\ngeodesic_rtol = 1e-6\nexposure = -1.5\ntonemap = \"filmic\"\n\
          filter = {{ type = \"gaussian\", radius = [1.5, 2], sigma = 0.4 }}\n"
     );
     let s = parse(&text).settings;
     assert_eq!((s.width, s.height, s.spp, s.max_depth, s.seed), (32, 16, 4, 3, 9));
     assert_eq!(s.integrator, IntegratorKind::BruteForce);
-    assert_eq!(s.intersection, Intersection::Poster);
+    assert_eq!(s.intersection, Intersection::Poster { step: 0.25, max_iterations: 800 });
     assert_eq!(s.geodesic_rtol, 1e-6);
     assert_eq!(s.tonemap.exposure_ev, -1.5);
     assert_eq!(s.tonemap.curve, Curve::Filmic);

@@ -12,6 +12,8 @@ pub(super) const RENDER_KEYS: &[&str] = &[
     "seed",
     "integrator",
     "intersection",
+    "poster_step",
+    "poster_max_iterations",
     "geodesic_rtol",
     "exposure",
     "tonemap",
@@ -33,8 +35,26 @@ pub(super) fn render_settings(t: &Table<'_>) -> Result<RenderSettings> {
         None => d.integrator,
     };
     let intersection = match t.get("intersection") {
-        Some(n) => [Intersection::Chord, Intersection::Poster][n.keyword("intersection", &["chord", "poster"])?],
+        Some(n) => [Intersection::Chord, Intersection::POSTER][n.keyword("intersection", &["chord", "poster"])?],
         None => d.intersection,
+    };
+    let intersection = match intersection {
+        Intersection::Poster { step, max_iterations } => {
+            let step = t.or("poster_step", step, |n| n.f64())?;
+            if !(step > 0.0 && step.is_finite()) {
+                return Err(t.loc("poster_step").err(format!("must be > 0, got {}", num(step))));
+            }
+            let max_iterations = t.or("poster_max_iterations", max_iterations, |n| n.u32_in(1, 100_000_000))?;
+            Intersection::Poster { step, max_iterations }
+        }
+        Intersection::Chord => {
+            for key in ["poster_step", "poster_max_iterations"] {
+                if t.get(key).is_some() {
+                    return Err(t.loc(key).err("only used with intersection = \"poster\""));
+                }
+            }
+            Intersection::Chord
+        }
     };
     let geodesic_rtol = t.or("geodesic_rtol", d.geodesic_rtol, |n| n.f64())?;
     if !(geodesic_rtol > 0.0 && geodesic_rtol < 1.0) {
