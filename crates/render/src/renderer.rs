@@ -71,7 +71,7 @@ fn render_tile(scene: &Scene, integrator: &PathIntegrator<'_>, bounds: TileBound
             let film_y = f64::from(y) + 0.5 + fs.offset[1];
             let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, rng.next_2d());
             let l = integrator.radiance(scene.camera.region, ray.origin, ray.direction, &mut rng, &mut stats);
-            tile.add_sample(x, y, l, fs.weight);
+            tile.add_sample(x, y, l * ray.weight, fs.weight);
             samples += 1;
         }
     }

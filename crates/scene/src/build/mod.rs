@@ -138,7 +138,8 @@ fn spacetime_section((kind, t): &(usize, Table<'_>)) -> Result<(Spacetime, Vec3)
     result.map(|s| (s, axis)).map_err(|(loc, e)| loc.err(e.to_string()))
 }
 
-const CAMERA_KEYS: &[&str] = &["position", "look_at", "up", "fov", "aperture", "focus_distance", "region"];
+const CAMERA_KEYS: &[&str] =
+    &["position", "look_at", "up", "fov", "aperture", "focus_distance", "region", "velocity"];
 
 impl Builder<'_> {
     /// A relative path from the scene file, resolved against its directory.
@@ -189,6 +190,10 @@ impl Builder<'_> {
                 return Err(t.loc("focus_distance").err(format!("must be > 0, got {}", num(d))));
             }
         }
-        Camera::new(region, position, look_at, up, fov, aperture, focus_distance).map_err(|e| t.err(e))
+        let camera = Camera::new(region, position, look_at, up, fov, aperture, focus_distance).map_err(|e| t.err(e))?;
+        match t.opt("velocity", |n| n.vec3())? {
+            Some(v) => camera.with_velocity(v).map_err(|e| t.loc("velocity").err(e)),
+            None => Ok(camera),
+        }
     }
 }
