@@ -2,7 +2,7 @@
 
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
-use render::film::{check_output_path, write_image};
+use render::film::{check_output_path, write_image, Film};
 use render::renderer::{render, RenderStats};
 use render::scene::Scene;
 use std::io::IsTerminal;
@@ -21,6 +21,20 @@ pub struct Args {
     /// Output image: .png (8-bit sRGB, tone mapped), .exr (linear float) or .hdr.
     #[arg(short, long, default_value = "render.png")]
     output: PathBuf,
+    /// Animation time (seconds) to render the camera at; frame N of `nullpath animate` is
+    /// time N / fps.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    time: f64,
+    #[command(flatten)]
+    options: RenderOptions,
+    /// Write statistics (rays, samples, seconds, NaN samples, ray fates) as JSON here.
+    #[arg(long)]
+    stats: Option<PathBuf>,
+}
+
+/// Options shared by the commands that render: image size, sampling, threads, reporting.
+#[derive(clap::Args, Debug)]
+pub struct RenderOptions {
     #[arg(long)]
     width: Option<u32>,
     #[arg(long)]
@@ -33,15 +47,12 @@ pub struct Args {
     /// Worker threads (default: all cores). The image does not depend on it.
     #[arg(long)]
     threads: Option<usize>,
-    /// Write statistics (rays, samples, seconds, NaN samples, ray fates) as JSON here.
-    #[arg(long)]
-    stats: Option<PathBuf>,
     /// No progress bar or summary.
     #[arg(long)]
-    quiet: bool,
+    pub quiet: bool,
 }
 
-/// Loads the named scene or the default one, with command-line overrides applied.
+/// Loads the named scene or the default one.
 pub fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
     match path {
         Some(p) => scene::load(p).map_err(|e| e.to_string()),
@@ -49,26 +60,70 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
     }
 }
 
-fn apply_overrides(scene: &mut Scene, args: &Args) -> Result<(), String> {
-    let s = &mut scene.settings;
-    let positive = |name: &str, v: Option<u32>, max: u32| match v {
-        Some(0) => Err(format!("--{name} must be at least 1")),
-        Some(v) if v > max => Err(format!("--{name} {v} is larger than {max}")),
-        other => Ok(other),
-    };
-    if let Some(w) = positive("width", args.width, 16384)? {
-        s.width = w;
+impl RenderOptions {
+    /// Applies the command-line overrides to the scene's settings.
+    pub fn apply(&self, scene: &mut Scene) -> Result<(), String> {
+        let s = &mut scene.settings;
+        let positive = |name: &str, v: Option<u32>, max: u32| match v {
+            Some(0) => Err(format!("--{name} must be at least 1")),
+            Some(v) if v > max => Err(format!("--{name} {v} is larger than {max}")),
+            other => Ok(other),
+        };
+        if let Some(w) = positive("width", self.width, 16384)? {
+            s.width = w;
+        }
+        if let Some(h) = positive("height", self.height, 16384)? {
+            s.height = h;
+        }
+        if let Some(n) = positive("spp", self.spp, 1 << 20)? {
+            s.spp = n;
+        }
+        if let Some(seed) = self.seed {
+            s.seed = seed;
+        }
+        Ok(())
     }
-    if let Some(h) = positive("height", args.height, 16384)? {
-        s.height = h;
+
+    pub fn thread_pool(&self) -> Result<rayon::ThreadPool, String> {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(self.threads.unwrap_or(0))
+            .build()
+            .map_err(|e| format!("--threads: {e}"))
     }
-    if let Some(n) = positive("spp", args.spp, 1 << 20)? {
-        s.spp = n;
+
+    /// Renders `scene` on `pool` with a progress bar (on a terminal, unless quiet); setting
+    /// `cancel` stops it between tiles.
+    pub fn render(&self, scene: &Scene, pool: &rayon::ThreadPool, cancel: &AtomicBool) -> (Film, RenderStats) {
+        let bar = (!self.quiet && std::io::stderr().is_terminal()).then(|| {
+            let bar = ProgressBar::new(1);
+            bar.set_style(
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta}")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            );
+            bar
+        });
+        let progress = |done: u64, total: u64| {
+            if let Some(bar) = &bar {
+                bar.set_length(total);
+                bar.set_position(done);
+            }
+        };
+        let result = pool.install(|| render(scene, cancel, &progress));
+        if let Some(bar) = &bar {
+            bar.finish_and_clear();
+        }
+        result
     }
-    if let Some(seed) = args.seed {
-        s.seed = seed;
-    }
-    Ok(())
+}
+
+/// A flag that Ctrl-C sets; renders poll it between tiles.
+pub fn cancel_on_interrupt() -> Result<Arc<AtomicBool>, String> {
+    let cancel = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&cancel);
+    // A second Ctrl-C while the image is being written kills the process as usual.
+    ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))
+        .map_err(|e| format!("cannot handle Ctrl-C: {e}"))?;
+    Ok(cancel)
 }
 
 /// Statistics as the JSON object `--stats` writes.
@@ -92,62 +147,45 @@ pub fn stats_json(stats: &RenderStats, scene: &Scene) -> serde_json::Value {
     })
 }
 
+/// One line on a finished render: size, samples, time, ray fates.
+pub fn summary(stats: &RenderStats, scene: &Scene) -> String {
+    let f = &stats.paths.fates;
+    format!(
+        "{}×{} at {} spp in {:.2} s ({:.0} samples/s); rays escaped {}, captured {}, absorbed {}, traversed {}, failed {}; NaN samples {}",
+        scene.settings.width,
+        scene.settings.height,
+        scene.settings.spp,
+        stats.seconds,
+        stats.samples as f64 / stats.seconds.max(1e-9),
+        f.escaped,
+        f.captured,
+        f.absorbed,
+        f.traversed,
+        f.failed,
+        stats.nan_samples,
+    )
+}
+
 pub fn run(args: &Args) -> Result<(), String> {
     let mut scene = load_scene(args.scene.as_deref())?;
-    apply_overrides(&mut scene, args)?;
+    args.options.apply(&mut scene)?;
+    if !args.time.is_finite() {
+        return Err(format!("--time must be a finite number of seconds, got {}", args.time));
+    }
+    scene.set_time(args.time)?;
     check_output_path(&args.output).map_err(|e| e.to_string())?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()
-        .map_err(|e| format!("--threads: {e}"))?;
-    let cancel = Arc::new(AtomicBool::new(false));
-    {
-        let cancel = Arc::clone(&cancel);
-        // A second Ctrl-C while the image is being written kills the process as usual.
-        ctrlc::set_handler(move || cancel.store(true, Ordering::Relaxed))
-            .map_err(|e| format!("cannot handle Ctrl-C: {e}"))?;
-    }
-    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(|| {
-        let bar = ProgressBar::new(1);
-        bar.set_style(
-            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta}")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        );
-        bar
-    });
-    let progress = |done: u64, total: u64| {
-        if let Some(bar) = &bar {
-            bar.set_length(total);
-            bar.set_position(done);
-        }
-    };
-    let (film, stats) = pool.install(|| render(&scene, &cancel, &progress));
-    if let Some(bar) = &bar {
-        bar.finish_and_clear();
-    }
+    let pool = args.options.thread_pool()?;
+    let cancel = cancel_on_interrupt()?;
+    let (film, stats) = args.options.render(&scene, &pool, &cancel);
     write_image(&film, &args.output, &scene.settings.tonemap).map_err(|e| e.to_string())?;
     if let Some(path) = &args.stats {
         let text = serde_json::to_string_pretty(&stats_json(&stats, &scene)).map_err(|e| e.to_string())?;
         std::fs::write(path, text + "\n").map_err(|e| format!("{}: cannot write statistics: {e}", path.display()))?;
     }
     let interrupted = stats.tiles_done < stats.tiles_total;
-    if !args.quiet {
-        let f = &stats.paths.fates;
-        eprintln!(
-            "{} {}×{} at {} spp in {:.2} s ({:.0} samples/s); rays escaped {}, captured {}, absorbed {}, traversed {}, failed {}; NaN samples {}",
-            if interrupted { "interrupted: wrote the finished part of" } else { "wrote" },
-            scene.settings.width,
-            scene.settings.height,
-            scene.settings.spp,
-            stats.seconds,
-            stats.samples as f64 / stats.seconds.max(1e-9),
-            f.escaped,
-            f.captured,
-            f.absorbed,
-            f.traversed,
-            f.failed,
-            stats.nan_samples,
-        );
+    if !args.options.quiet {
+        let verb = if interrupted { "interrupted: wrote the finished part of" } else { "wrote" };
+        eprintln!("{verb} {}", summary(&stats, &scene));
         eprintln!("image: {}", args.output.display());
     }
     if interrupted {

@@ -4,6 +4,7 @@
 
 use crate::geometry::Vec3;
 use crate::sampling::concentric_disk;
+use glam::{DMat3, DQuat};
 use spacetime::tensor::ETA;
 use spacetime::{Minkowski, Region, Tetrad};
 
@@ -59,13 +60,26 @@ impl Camera {
         lens_radius: f64,
         focus_distance: Option<f64>,
     ) -> Result<Camera, String> {
-        let forward = (look_at - position).normalize_or_zero();
-        if !position.is_finite() || !look_at.is_finite() || forward == Vec3::ZERO {
-            return Err("look_at must differ from position, and both must be finite".into());
+        if !position.is_finite() || !look_at.is_finite() {
+            return Err("position and look_at must be finite".into());
         }
-        let right = forward.cross(up).normalize_or_zero();
-        if right == Vec3::ZERO || !right.is_finite() {
-            return Err("up must not be parallel to the viewing direction".into());
+        let orientation = look_rotation(look_at - position, up)?;
+        let focus_distance = focus_distance.unwrap_or((look_at - position).length());
+        Camera::oriented(region, position, orientation, vfov_deg, lens_radius, focus_distance)
+    }
+
+    /// A camera at `position` whose image axes (right, up, backwards) are the world axes rotated
+    /// by `orientation`; see [`look_rotation`].
+    pub fn oriented(
+        region: Region,
+        position: Vec3,
+        orientation: DQuat,
+        vfov_deg: f64,
+        lens_radius: f64,
+        focus_distance: f64,
+    ) -> Result<Camera, String> {
+        if !position.is_finite() || !orientation.is_finite() {
+            return Err("position and orientation must be finite".into());
         }
         if !(vfov_deg > 0.0 && vfov_deg < 180.0) {
             return Err(format!("fov must be in (0, 180) degrees, got {vfov_deg}"));
@@ -73,16 +87,16 @@ impl Camera {
         if !(lens_radius >= 0.0 && lens_radius.is_finite()) {
             return Err(format!("aperture must be a finite number ≥ 0, got {lens_radius}"));
         }
-        let focus_distance = focus_distance.unwrap_or((look_at - position).length());
         if !(focus_distance > 0.0 && focus_distance.is_finite()) {
             return Err(format!("focus distance must be > 0, got {focus_distance}"));
         }
+        let orientation = orientation.normalize();
         Ok(Camera {
             region,
             position,
-            right,
-            up: right.cross(forward),
-            forward,
+            right: orientation * Vec3::X,
+            up: orientation * Vec3::Y,
+            forward: orientation * Vec3::NEG_Z,
             tan_half_fov: (0.5 * vfov_deg.to_radians()).tan(),
             lens_radius,
             focus_distance,
@@ -138,6 +152,20 @@ impl Camera {
             }
         }
     }
+}
+
+/// The rotation taking the world axes x, y, −z to the image axes of a camera looking along
+/// `forward` with `up` roughly up: right, up, forward.
+pub fn look_rotation(forward: Vec3, up: Vec3) -> Result<DQuat, String> {
+    let forward = forward.normalize_or_zero();
+    if forward == Vec3::ZERO || !forward.is_finite() {
+        return Err("look_at must differ from position".into());
+    }
+    let right = forward.cross(up).normalize_or_zero();
+    if right == Vec3::ZERO || !right.is_finite() {
+        return Err("up must not be parallel to the viewing direction".into());
+    }
+    Ok(DQuat::from_mat3(&DMat3::from_cols(right, right.cross(forward), -forward)))
 }
 
 #[cfg(test)]

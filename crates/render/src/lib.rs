@@ -6,6 +6,7 @@
 
 pub mod accel;
 pub mod camera;
+pub mod camera_path;
 pub mod color;
 pub mod film;
 pub mod geometry;

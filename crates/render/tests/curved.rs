@@ -40,6 +40,7 @@ fn shadow_has_the_exact_angular_radius() {
         camera,
         world: empty_world(Sky::Constant(Rgb::ONE)),
         settings,
+        animation: None,
     };
     let (film, stats) = run(&scene);
     assert_eq!(stats.nan_samples, 0);
@@ -80,7 +81,7 @@ fn room(spacetime: Spacetime) -> Scene {
     let settings = RenderSettings { width: 32, height: 32, spp: 8, max_depth: 5, ..RenderSettings::default() };
     let world =
         World::new(materials, (objects, Sky::Constant(Rgb::splat(0.2))), (Vec::new(), Sky::Constant(Rgb::ZERO)));
-    Scene { spacetime, axis: Vec3::Y, camera, world, settings }
+    Scene { spacetime, axis: Vec3::Y, camera, world, settings, animation: None }
 }
 
 #[test]

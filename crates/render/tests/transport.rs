@@ -34,6 +34,7 @@ fn scene(objects: Vec<Object>, materials: Vec<Material>, sky: Sky, camera: Camer
         camera,
         world: World::new(materials, (objects, sky), (Vec::new(), Sky::Constant(Rgb::ZERO))),
         settings,
+        animation: None,
     }
 }
 

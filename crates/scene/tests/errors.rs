@@ -412,3 +412,67 @@ fn malformed_documents_are_errors_not_panics() {
         let _ = scene::parse(&format!("{CAMERA}[[objects]]\n{body}\n"), "zoo.toml", Path::new("."));
     }
 }
+
+#[test]
+fn camera_motion_mistakes_point_at_the_field() {
+    let keys = |second: &str| {
+        format!(
+            "[camera]\nvelocity = \"from-path\"\nspeed_of_light = 10\n\
+             [[camera.keyframes]]\ntime = 0\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n\
+             [[camera.keyframes]]\n{second}\n"
+        )
+    };
+    // Line 9 is the second keyframe's first line.
+    check(
+        &keys("time = 0\nposition = [1, 0, 5]\nlook_at = [0, 0, 0]"),
+        9,
+        "camera.keyframes[1].time",
+        &["times must increase"],
+    );
+    check(&keys("time = 1\nposition = [0, 0, 5]\nlook_at = [0, 0, 5]"), 11, "camera.keyframes[1].look_at", &["differ"]);
+    check(
+        &keys("time = 1\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 0"),
+        12,
+        "camera.keyframes[1].fov",
+        &["(0, 180)"],
+    );
+    // 40 units in 1 s with c = 10 units/s: four times the speed of light, found when loading.
+    check(
+        &keys("time = 1\nposition = [0, 0, -35]\nlook_at = [0, 0, -40]"),
+        1,
+        "camera",
+        &["t = ", "not slower than light", "speed_of_light"],
+    );
+    check(
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nvelocity = \"from-path\"\n",
+        1,
+        "camera.speed_of_light",
+        &["required with velocity = \"from-path\""],
+    );
+    check(
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nvelocity = [0.6, 0.8, 0]\n",
+        4,
+        "camera.velocity",
+        &["not below the speed of light"],
+    );
+    check(
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nvelocity = \"fast\"\n",
+        4,
+        "camera.velocity",
+        &["from-path"],
+    );
+    check(
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n[[camera.keyframes]]\ntime = 0\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n",
+        2,
+        "camera.position",
+        &["in each keyframe"],
+    );
+    check(
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\norbit = { center = [0, 0, 0], period = 0 }\n",
+        4,
+        "camera.orbit.period",
+        &["non-zero"],
+    );
+    check(&format!("{CAMERA}[animation]\nfps = -1\n"), 6, "animation.fps", &["(0, 1000]"]);
+    check(&format!("{CAMERA}[animation]\nframes = 0\n"), 6, "animation.frames", &[]);
+}

@@ -131,6 +131,14 @@ impl Tetrad {
         (n, energy)
     }
 
+    /// The 3-velocity (units of c) this observer measures for a body moving with 4-velocity `u`
+    /// (any positive multiple): `vⁱ = g(u, e_(i)) / (−g(u, e_(0)))`, the spatial frame
+    /// components of `u` over its time component.
+    pub fn measured_velocity(&self, g: &Matrix4, u: &Vector4) -> [f64; 3] {
+        let time = -quadratic(g, u, &self.e[0]);
+        std::array::from_fn(|i| quadratic(g, u, &self.e[i + 1]) / time)
+    }
+
     /// Largest deviation of `g(e_a, e_b)` from `η_ab`.
     pub fn orthonormality_error(&self, g: &Matrix4) -> f64 {
         let mut worst: f64 = 0.0;
@@ -154,6 +162,61 @@ impl Tetrad {
         let m = nalgebra::Matrix3::from_fn(|i, j| self.e[i + 1][j + 1]);
         m.determinant().signum()
     }
+}
+
+/// The 3-velocity, in units of c, that the local observer (static where one exists) at world
+/// position `p` of `region` measures for a body whose world coordinates change at the rate
+/// `dp_dt` per unit coordinate time. Components are along the observer's axes as the renderer
+/// aligns them with the world's. `None` where the chart does not reach `p`; an error where that
+/// motion is not timelike (as fast as light or faster, as the local observer sees it).
+pub fn local_velocity(
+    metric: &dyn Metric,
+    region: crate::Region,
+    p: [f64; 3],
+    dp_dt: [f64; 3],
+) -> Option<Result<[f64; 3], FrameError>> {
+    let x = metric.world_to_chart(region, p, 0.0)?;
+    let Some(jacobian) = world_to_chart_jacobian(metric, region, p) else {
+        return Some(Err(FrameError::Degenerate));
+    };
+    let v = jacobian * nalgebra::Vector3::from(dp_dt);
+    let u: Vector4 = [1.0, v[0], v[1], v[2]];
+    let g = metric.metric(&x);
+    if !(quadratic(&g, &u, &u) < 0.0) {
+        return Some(Err(FrameError::NotTimelike));
+    }
+    // The frame's axes follow the chart's; the world-aligned axes are their images under the
+    // rotation (or reflection) part of the chart map, `R` of its polar decomposition `J = R S`:
+    // the identity for Cartesian charts, and a reflection of the tangential directions in a
+    // wormhole's lower region, whose chart is an inversion of the world's coordinates.
+    let svd = jacobian.svd(true, true);
+    let (Some(left), Some(right)) = (svd.u, svd.v_t) else {
+        return Some(Err(FrameError::Degenerate));
+    };
+    let to_world = (left * right).transpose();
+    Some(Tetrad::local_observer(metric, &x).map(|frame| {
+        let chart_aligned = nalgebra::Vector3::from(frame.measured_velocity(&g, &u));
+        (to_world * chart_aligned).into()
+    }))
+}
+
+/// `∂x^i/∂p^j` of [`Metric::world_to_chart`] by central differences with a step of 1e-6 of the
+/// radius (relative error ~1e-10, from rounding; the maps are smooth where the chart reaches).
+fn world_to_chart_jacobian(metric: &dyn Metric, region: crate::Region, p: [f64; 3]) -> Option<nalgebra::Matrix3<f64>> {
+    let h = 1e-6 * crate::tensor::norm3(&p).max(metric.length_scale());
+    let at = |j: usize, sign: f64| {
+        let mut q = p;
+        q[j] += sign * h;
+        metric.world_to_chart(region, q, 0.0)
+    };
+    let mut jacobian = nalgebra::Matrix3::zeros();
+    for j in 0..3 {
+        let (ahead, behind) = (at(j, 1.0)?, at(j, -1.0)?);
+        for i in 0..3 {
+            jacobian[(i, j)] = (ahead[i + 1] - behind[i + 1]) / (2.0 * h);
+        }
+    }
+    Some(jacobian)
 }
 
 #[cfg(test)]
@@ -208,6 +271,34 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn local_velocity_of_world_motion() {
+        use crate::Region::{Lower, Upper};
+        let v = |m: &dyn Metric, region, p, dp| local_velocity(m, region, p, dp).unwrap().unwrap();
+        // Flat space: the world velocity itself.
+        let flat = v(&Minkowski, Upper, [1.0, 2.0, 3.0], [0.1, -0.2, 0.3]);
+        assert!((0..3).all(|i| (flat[i] - [0.1, -0.2, 0.3][i]).abs() < 1e-9));
+        // A circular Schwarzschild geodesic, Ω = √(M/r³), is seen by static observers at
+        // v = √(M/(r − 2M)) (Kerr–Schild and Schwarzschild time differ by a function of r).
+        let (m, r) = (1.0f64, 7.0f64);
+        let omega = (m / (r * r * r)).sqrt();
+        let orbit = v(&Schwarzschild::new(m), Upper, [r, 0.0, 0.0], [0.0, 0.0, -r * omega]);
+        assert!((orbit[2] + (m / (r - 2.0 * m)).sqrt()).abs() < 1e-9, "{orbit:?}");
+        assert!(orbit[0].abs() < 1e-12 && orbit[1].abs() < 1e-12);
+        // Ellis: world radius ρ = √(l² + b₀²) is areal, so tangential speed is ρ dφ/dt and radial
+        // proper speed dl/dt = (ρ/l) dρ/dt; the lower region's world axes are mirrored.
+        let ellis = Ellis::new(1.0);
+        for region in [Upper, Lower] {
+            let tangential = v(&ellis, region, [0.0, 2.0, 0.0], [0.3, 0.0, 0.0]);
+            assert!((tangential[0] - 0.3).abs() < 1e-9, "{region:?} {tangential:?}");
+            let radial = v(&ellis, region, [0.0, 2.0, 0.0], [0.0, 0.1, 0.0]);
+            assert!((radial[1] - 0.1 * 2.0 / 3f64.sqrt()).abs() < 1e-9, "{region:?} {radial:?}");
+        }
+        // As fast as light, or outside the chart.
+        assert_eq!(local_velocity(&Minkowski, Upper, [0.0; 3], [1.0, 0.0, 0.0]), Some(Err(FrameError::NotTimelike)));
+        assert_eq!(local_velocity(&ellis, Upper, [0.0, 0.5, 0.0], [0.1, 0.0, 0.0]), None);
     }
 
     #[test]

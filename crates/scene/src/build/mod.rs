@@ -1,13 +1,13 @@
 //! From the document tree to a [`Scene`]: one function per section of the file, each checking its
 //! values where it reads them so that errors point at the offending value.
 
+mod camera;
 mod material;
 mod object;
 mod settings;
 mod sky;
 
-use crate::reader::{fmt_vec, num, Doc, Result, Table};
-use render::camera::Camera;
+use crate::reader::{num, Doc, Result, Table};
 use render::geometry::Vec3;
 use render::image_io::ImageData;
 use render::material::Material;
@@ -35,7 +35,7 @@ pub(crate) struct Builder<'a> {
     two_regions: bool,
 }
 
-const TOP_LEVEL: &[&str] = &["spacetime", "camera", "render", "sky", "lower", "materials", "objects"];
+const TOP_LEVEL: &[&str] = &["spacetime", "camera", "animation", "render", "sky", "lower", "materials", "objects"];
 
 /// Builds the scene described by the parsed document `root`.
 pub(crate) fn scene<'a>(doc: &'a Doc<'a>, root: &'a Spanned<DeTable<'a>>, base_dir: &'a Path) -> Result<Scene> {
@@ -56,7 +56,11 @@ pub(crate) fn scene<'a>(doc: &'a Doc<'a>, root: &'a Spanned<DeTable<'a>>, base_d
     let Some(camera) = root.get("camera") else {
         return Err(root.missing("camera"));
     };
-    let camera = b.camera(&camera.table(CAMERA_KEYS)?)?;
+    let camera_table = camera.table(camera::CAMERA_KEYS)?;
+    let rig = b.camera_rig(&camera_table)?;
+    let animation_table = root.get("animation").map(|n| n.table(camera::ANIMATION_KEYS)).transpose()?;
+    let animation = camera::animation(animation_table.as_ref(), &camera_table, rig, &spacetime, axis)?;
+    let camera = animation.rig.camera_at(0.0, &spacetime, axis).map_err(|e| camera_table.err(e))?;
     let settings = match root.get("render") {
         Some(n) => settings::render_settings(&n.table(settings::RENDER_KEYS)?)?,
         None => render::settings::RenderSettings::default(),
@@ -98,7 +102,7 @@ pub(crate) fn scene<'a>(doc: &'a Doc<'a>, root: &'a Spanned<DeTable<'a>>, base_d
         }
     }
     let world = World::new(b.materials, (upper, upper_sky), (lower, lower_sky));
-    Ok(Scene { spacetime, axis, camera, world, settings })
+    Ok(Scene { spacetime, axis, camera, world, settings, animation: Some(animation) })
 }
 
 const SPACETIMES: &[(&str, &[&str])] =
@@ -138,9 +142,6 @@ fn spacetime_section((kind, t): &(usize, Table<'_>)) -> Result<(Spacetime, Vec3)
     result.map(|s| (s, axis)).map_err(|(loc, e)| loc.err(e.to_string()))
 }
 
-const CAMERA_KEYS: &[&str] =
-    &["position", "look_at", "up", "fov", "aperture", "focus_distance", "region", "velocity"];
-
 impl Builder<'_> {
     /// A relative path from the scene file, resolved against its directory.
     fn resolve(&self, file: &str) -> PathBuf {
@@ -157,43 +158,5 @@ impl Builder<'_> {
             return Err(n.err("only a wormhole (spacetime type = \"ellis\") has a lower region"));
         }
         Ok(region)
-    }
-
-    /// `[camera]`.
-    fn camera(&self, t: &Table<'_>) -> Result<Camera> {
-        let position = t.req("position", |n| n.vec3())?;
-        let look_at = t.req("look_at", |n| n.vec3())?;
-        let up = t.or("up", render::geometry::Vec3::Y, |n| n.direction())?;
-        let fov = t.or("fov", 40.0, |n| n.f64())?;
-        let aperture = t.or("aperture", 0.0, |n| n.f64())?;
-        let focus_distance = t.opt("focus_distance", |n| n.f64())?;
-        let region = self.region(t)?;
-        let forward = look_at - position;
-        if forward.length_squared() == 0.0 || !forward.length_squared().is_finite() {
-            return Err(t.loc("look_at").err(format!("must differ from position {}", fmt_vec(position))));
-        }
-        if forward.normalize().cross(up.normalize()).length() < 1e-9 {
-            return Err(t.loc("up").err(format!(
-                "up {} is parallel to the viewing direction {}",
-                fmt_vec(up),
-                fmt_vec(forward)
-            )));
-        }
-        if !(fov > 0.0 && fov < 180.0) {
-            return Err(t.loc("fov").err(format!("must be in (0, 180) degrees, got {}", num(fov))));
-        }
-        if !(aperture >= 0.0) {
-            return Err(t.loc("aperture").err(format!("must be ≥ 0, got {}", num(aperture))));
-        }
-        if let Some(d) = focus_distance {
-            if !(d > 0.0) {
-                return Err(t.loc("focus_distance").err(format!("must be > 0, got {}", num(d))));
-            }
-        }
-        let camera = Camera::new(region, position, look_at, up, fov, aperture, focus_distance).map_err(|e| t.err(e))?;
-        match t.opt("velocity", |n| n.vec3())? {
-            Some(v) => camera.with_velocity(v).map_err(|e| t.loc("velocity").err(e)),
-            None => Ok(camera),
-        }
     }
 }

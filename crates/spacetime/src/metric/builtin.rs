@@ -1,7 +1,7 @@
 //! The closed set of built-in spacetimes, for scene files and the command line, validated on
 //! construction.
 
-use super::{Ellis, Kerr, Minkowski, Schwarzschild};
+use super::{Ellis, Kerr, Metric, Minkowski, Schwarzschild};
 
 /// A built-in spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -66,12 +66,16 @@ impl Spacetime {
 
     /// The curvature length scale (mass or throat radius; 1 for flat space).
     pub fn length_scale(&self) -> f64 {
-        use super::Metric;
+        self.metric().length_scale()
+    }
+
+    /// The metric, for code that needs no more than the [`Metric`] trait.
+    pub fn metric(&self) -> &dyn Metric {
         match self {
-            Spacetime::Minkowski(m) => m.length_scale(),
-            Spacetime::Schwarzschild(m) => m.length_scale(),
-            Spacetime::Kerr(m) => m.length_scale(),
-            Spacetime::Ellis(m) => m.length_scale(),
+            Spacetime::Minkowski(m) => m,
+            Spacetime::Schwarzschild(m) => m,
+            Spacetime::Kerr(m) => m,
+            Spacetime::Ellis(m) => m,
         }
     }
 }

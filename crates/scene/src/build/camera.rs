@@ -1,0 +1,186 @@
+//! `[camera]` and `[animation]`: a still camera, keyframes or an orbit, the observer's motion,
+//! and the frames of an animation.
+
+use super::Builder;
+use crate::reader::{fmt_vec, num, Result, Table};
+use render::camera::look_rotation;
+use render::camera_path::{CameraPath, CameraRig, Keyframe, Observer};
+use render::geometry::Vec3;
+use render::scene::Animation;
+use spacetime::Spacetime;
+
+pub(super) const CAMERA_KEYS: &[&str] = &[
+    "position",
+    "look_at",
+    "up",
+    "fov",
+    "aperture",
+    "focus_distance",
+    "region",
+    "velocity",
+    "speed_of_light",
+    "keyframes",
+    "orbit",
+];
+const KEYFRAME_KEYS: &[&str] = &["time", "position", "look_at", "up", "fov", "focus_distance"];
+const ORBIT_KEYS: &[&str] = &["center", "axis", "period"];
+pub(super) const ANIMATION_KEYS: &[&str] = &["fps", "frames"];
+
+/// The fields a keyframe inherits from `[camera]`.
+struct Defaults {
+    up: Vec3,
+    fov: f64,
+    focus_distance: Option<f64>,
+}
+
+impl Builder<'_> {
+    /// `[camera]`: the camera's rig (its path, lens, region and motion).
+    pub(super) fn camera_rig(&self, t: &Table<'_>) -> Result<CameraRig> {
+        let defaults = Defaults {
+            up: t.or("up", Vec3::Y, |n| n.direction())?,
+            fov: t.or("fov", 40.0, |n| n.f64())?,
+            focus_distance: t.opt("focus_distance", |n| n.f64())?,
+        };
+        let aperture = t.or("aperture", 0.0, |n| n.f64())?;
+        if !(aperture >= 0.0 && aperture.is_finite()) {
+            return Err(t.loc("aperture").err(format!("must be a finite number ≥ 0, got {}", num(aperture))));
+        }
+        let path = match (t.get("keyframes"), t.get("orbit")) {
+            (Some(_), Some(orbit)) => return Err(orbit.err("give either keyframes or an orbit, not both")),
+            (Some(keys), None) => keyframes(t, &keys.array()?, &defaults)?,
+            (None, orbit) => {
+                let start = keyframe(t, 0.0, &defaults)?;
+                match orbit {
+                    Some(orbit) => orbit_path(&orbit.table(ORBIT_KEYS)?, start)?,
+                    None => CameraPath::Keyframes(vec![start]),
+                }
+            }
+        };
+        Ok(CameraRig { region: self.region(t)?, path, lens_radius: aperture, observer: observer(t)? })
+    }
+}
+
+/// A pose from `position`, `look_at`, `up`, `fov` and `focus_distance` of table `t`, with
+/// `[camera]`'s values as defaults.
+fn keyframe(t: &Table<'_>, time: f64, defaults: &Defaults) -> Result<Keyframe> {
+    let position = t.req("position", |n| n.vec3())?;
+    let look_at = t.req("look_at", |n| n.vec3())?;
+    let up = t.or("up", defaults.up, |n| n.direction())?;
+    let fov = t.or("fov", defaults.fov, |n| n.f64())?;
+    let focus_distance = t.opt("focus_distance", |n| n.f64())?.or(defaults.focus_distance);
+    let forward = look_at - position;
+    if forward.length_squared() == 0.0 || !forward.length_squared().is_finite() {
+        return Err(t.loc("look_at").err(format!("must differ from position {}", fmt_vec(position))));
+    }
+    let orientation = look_rotation(forward, up).map_err(|_| {
+        t.loc("up").err(format!("up {} is parallel to the viewing direction {}", fmt_vec(up), fmt_vec(forward)))
+    })?;
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(t.loc("fov").err(format!("must be in (0, 180) degrees, got {}", num(fov))));
+    }
+    let focus_distance = focus_distance.unwrap_or(forward.length());
+    if !(focus_distance > 0.0 && focus_distance.is_finite()) {
+        return Err(t.loc("focus_distance").err(format!("must be > 0, got {}", num(focus_distance))));
+    }
+    Ok(Keyframe { time, position, orientation, fov, focus_distance })
+}
+
+/// `[[camera.keyframes]]`: each with its `time`; `[camera]` then gives no pose of its own.
+fn keyframes(camera: &Table<'_>, elements: &[crate::reader::Node<'_>], defaults: &Defaults) -> Result<CameraPath> {
+    for key in ["position", "look_at"] {
+        if let Some(n) = camera.get(key) {
+            return Err(n.err("with keyframes, give position and look_at in each keyframe"));
+        }
+    }
+    let Some(first) = elements.first() else {
+        return Err(camera.loc("keyframes").err("needs at least one keyframe"));
+    };
+    let mut keys: Vec<Keyframe> = Vec::with_capacity(elements.len());
+    for element in elements {
+        let t = element.table(KEYFRAME_KEYS)?;
+        let time = t.req("time", |n| n.f64())?;
+        if let Some(previous) = keys.last().filter(|k| !(time > k.time)) {
+            return Err(t.loc("time").err(format!(
+                "keyframe times must increase: {} follows {}",
+                num(time),
+                num(previous.time)
+            )));
+        }
+        keys.push(keyframe(&t, time, defaults)?);
+    }
+    CameraPath::keyframes(keys).map_err(|e| first.err(e))
+}
+
+/// `[camera.orbit]`: the `[camera]` pose turned about an axis through `center`.
+fn orbit_path(t: &Table<'_>, start: Keyframe) -> Result<CameraPath> {
+    let center = t.req("center", |n| n.vec3())?;
+    let axis = t.or("axis", Vec3::Y, |n| n.direction())?;
+    let period = t.req("period", |n| n.f64())?;
+    if !(period.is_finite() && period != 0.0) {
+        return Err(t.loc("period").err(format!("must be a finite, non-zero number of seconds, got {}", num(period))));
+    }
+    Ok(CameraPath::Orbit { start, center, axis: axis.normalize(), period })
+}
+
+/// `velocity`: absent (at rest), a 3-velocity in units of c, or `"from-path"` with
+/// `speed_of_light` in scene units per second of animation.
+fn observer(t: &Table<'_>) -> Result<Observer> {
+    let speed_of_light = t.opt("speed_of_light", |n| n.f64())?;
+    let Some(v) = t.get("velocity") else {
+        return match speed_of_light {
+            Some(_) => Err(t.loc("speed_of_light").err("only used with velocity = \"from-path\"")),
+            None => Ok(Observer::Static),
+        };
+    };
+    if v.is_str() {
+        v.keyword("velocity", &["from-path"])?;
+        let Some(c) = speed_of_light else {
+            return Err(t.loc("speed_of_light").err(
+                "required with velocity = \"from-path\": the speed of light in scene units per second of animation",
+            ));
+        };
+        if !(c > 0.0 && c.is_finite()) {
+            return Err(t.loc("speed_of_light").err(format!("must be > 0, got {}", num(c))));
+        }
+        return Ok(Observer::FromPath { speed_of_light: c });
+    }
+    if speed_of_light.is_some() {
+        return Err(t.loc("speed_of_light").err("only used with velocity = \"from-path\""));
+    }
+    let velocity = v.vec3()?;
+    if !(velocity.length() < 1.0) {
+        return Err(v.err(format!(
+            "speed {} is not below the speed of light (velocity is in units of c)",
+            num(velocity.length())
+        )));
+    }
+    Ok(Observer::Velocity(velocity))
+}
+
+/// `[animation]`: frames per second and, optionally, the number of frames
+/// (default: [`Animation::frame_count`]).
+pub(super) fn animation(
+    t: Option<&Table<'_>>,
+    camera: &Table<'_>,
+    rig: CameraRig,
+    spacetime: &Spacetime,
+    axis: Vec3,
+) -> Result<Animation> {
+    let (fps, frames) = match t {
+        None => (24.0, None),
+        Some(t) => {
+            let fps = t.or("fps", 24.0, |n| n.f64())?;
+            if !(fps > 0.0 && fps <= 1000.0) {
+                return Err(t.loc("fps").err(format!("must be in (0, 1000], got {}", num(fps))));
+            }
+            (fps, t.opt("frames", |n| n.u32_in(1, 1_000_000))?)
+        }
+    };
+    let animation = Animation { rig, fps, frames };
+    // A path-borne speed can reach c somewhere: find it now rather than frames into a render.
+    let moving = matches!(animation.rig.observer, Observer::FromPath { .. });
+    for frame in 0..if moving { animation.frame_count().min(1_000_000) } else { 1 } {
+        animation.rig.camera_at(animation.time(frame), spacetime, axis).map_err(|e| camera.err(e))?;
+    }
+    Ok(animation)
+}

@@ -1,0 +1,184 @@
+//! `nullpath animate`: render a scene's animation frame by frame into a directory, resuming where
+//! an earlier run stopped, and assemble the frames into a video with ffmpeg on request.
+//!
+//! Frame `n` is exactly the still `nullpath render --time n/fps` (same seed, same pixels), so a
+//! frame can be re-rendered or checked on its own.
+
+use super::render::{cancel_on_interrupt, load_scene, summary, RenderOptions};
+use clap::{Parser, ValueEnum};
+use render::film::write_image;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::Ordering;
+
+#[derive(Parser, Debug)]
+pub struct Args {
+    /// Scene file (TOML) with camera keyframes or an orbit.
+    scene: PathBuf,
+    /// Directory for the frames (created if missing): frame_00000.png, frame_00001.png, …
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Frames to render: `A..B` (A to B, B excluded), `A..=B` (B included) or one frame `N`.
+    /// Default: all the scene's frames.
+    #[arg(long, value_parser = parse_frames)]
+    frames: Option<Range<u32>>,
+    /// Frames per second of animation (default: the scene's `[animation] fps`).
+    #[arg(long)]
+    fps: Option<f64>,
+    /// Image format of the frames.
+    #[arg(long, value_enum, default_value_t = FrameFormat::Png)]
+    format: FrameFormat,
+    #[command(flatten)]
+    options: RenderOptions,
+    /// Also assemble the frames into this video (H.264 MP4) with ffmpeg, which must be installed.
+    #[arg(long)]
+    video: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum FrameFormat {
+    /// 8-bit sRGB, tone mapped as the scene says.
+    Png,
+    /// Linear floating point, for compositing.
+    Exr,
+}
+
+impl FrameFormat {
+    fn extension(self) -> &'static str {
+        match self {
+            FrameFormat::Png => "png",
+            FrameFormat::Exr => "exr",
+        }
+    }
+}
+
+/// `A..B`, `A..=B` or `N`, as a half-open range.
+fn parse_frames(text: &str) -> Result<Range<u32>, String> {
+    let number = |s: &str| s.trim().parse::<u32>().map_err(|_| format!("\"{s}\" is not a frame number"));
+    let range = if let Some((a, b)) = text.split_once("..=") {
+        number(a)?..number(b)?.checked_add(1).ok_or("frame number too large")?
+    } else if let Some((a, b)) = text.split_once("..") {
+        number(a)?..number(b)?
+    } else {
+        let n = number(text)?;
+        n..n.checked_add(1).ok_or("frame number too large")?
+    };
+    if range.is_empty() {
+        return Err(format!("\"{text}\" holds no frames (write A..B with A < B, or A..=B)"));
+    }
+    Ok(range)
+}
+
+/// The path of frame `n` in `dir`.
+fn frame_path(dir: &Path, n: u32, format: FrameFormat) -> PathBuf {
+    dir.join(format!("frame_{n:05}.{}", format.extension()))
+}
+
+/// Whether a complete frame of the wanted size is already on disk. Frames are written whole
+/// (to a temporary file, then renamed), so a readable file of the right size is complete.
+fn is_complete(path: &Path, width: u32, height: u32) -> bool {
+    image::image_dimensions(path).is_ok_and(|size| size == (width, height))
+}
+
+pub fn run(args: &Args) -> Result<(), String> {
+    let mut scene = load_scene(Some(&args.scene))?;
+    args.options.apply(&mut scene)?;
+    let Some(mut animation) = scene.animation.clone() else {
+        return Err(format!("{}: the scene has no camera to animate", args.scene.display()));
+    };
+    if let Some(fps) = args.fps {
+        if !(fps > 0.0 && fps <= 1000.0) {
+            return Err(format!("--fps must be in (0, 1000], got {fps}"));
+        }
+        animation.fps = fps;
+    }
+    if args.video.is_some() && args.format != FrameFormat::Png {
+        return Err("--video assembles PNG frames; use --format png".into());
+    }
+    let frames = args.frames.clone().unwrap_or(0..animation.frame_count());
+    std::fs::create_dir_all(&args.output)
+        .map_err(|e| format!("{}: cannot create the frame directory: {e}", args.output.display()))?;
+    let pool = args.options.thread_pool()?;
+    let cancel = cancel_on_interrupt()?;
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    let mut rendered = 0;
+    for n in frames.clone() {
+        let path = frame_path(&args.output, n, args.format);
+        if is_complete(&path, width, height) {
+            continue;
+        }
+        let time = animation.time(n);
+        scene.camera = animation.rig.camera_at(time, &scene.spacetime, scene.axis)?;
+        let (film, stats) = args.options.render(&scene, &pool, &cancel);
+        if cancel.load(Ordering::Relaxed) || stats.tiles_done < stats.tiles_total {
+            // Keep what was computed, under a name a later run does not take for a finished frame.
+            let partial = path.with_extension(format!("partial.{}", args.format.extension()));
+            write_image(&film, &partial, &scene.settings.tonemap).map_err(|e| e.to_string())?;
+            return Err(format!(
+                "interrupted in frame {n}, after {rendered} new frames; its finished tiles are in {}. \
+                 Run the same command again to render the missing frames.",
+                partial.display()
+            ));
+        }
+        write_image(&film, &path, &scene.settings.tonemap).map_err(|e| e.to_string())?;
+        rendered += 1;
+        if !args.options.quiet {
+            eprintln!("frame {n} (t = {time:.4} s): {}", summary(&stats, &scene));
+        }
+    }
+    if !args.options.quiet {
+        let skipped = frames.len() as u32 - rendered;
+        eprintln!(
+            "frames {}..{} in {}: rendered {rendered}, {skipped} already complete",
+            frames.start,
+            frames.end,
+            args.output.display()
+        );
+    }
+    match &args.video {
+        Some(video) => assemble_video(&args.output, frames, animation.fps, video),
+        None => Ok(()),
+    }
+}
+
+/// Encodes the PNG frames `frames` of `dir` as an H.264 MP4 at `fps` frames per second.
+fn assemble_video(dir: &Path, frames: Range<u32>, fps: f64, video: &Path) -> Result<(), String> {
+    let pattern = dir.join("frame_%05d.png");
+    let output = Command::new("ffmpeg")
+        .args(["-y", "-loglevel", "error", "-framerate", &fps.to_string()])
+        .args(["-start_number", &frames.start.to_string(), "-i"])
+        .arg(&pattern)
+        .args(["-frames:v", &frames.len().to_string()])
+        // H.264 in yuv420p (what players accept) needs even sizes: pad by one pixel if odd.
+        .args(["-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p"])
+        .arg(video)
+        .output();
+    match output {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(format!(
+            "ffmpeg is not installed (or not on PATH), so no video was made; the frames are in {}. \
+             Install ffmpeg (e.g. `apt install ffmpeg`) and run the same command again: finished frames are kept.",
+            dir.display()
+        )),
+        Err(e) => Err(format!("cannot run ffmpeg: {e}")),
+        Ok(out) if !out.status.success() => {
+            Err(format!("ffmpeg failed ({}): {}", out.status, String::from_utf8_lossy(&out.stderr).trim()))
+        }
+        Ok(_) => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_ranges() {
+        assert_eq!(parse_frames("3..7"), Ok(3..7));
+        assert_eq!(parse_frames("3..=7"), Ok(3..8));
+        assert_eq!(parse_frames("12"), Ok(12..13));
+        assert!(parse_frames("7..3").is_err());
+        assert!(parse_frames("a..3").is_err());
+        assert!(parse_frames("-1").is_err());
+    }
+}
