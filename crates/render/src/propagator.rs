@@ -386,3 +386,20 @@ fn kerr_local_normal(metric: &Kerr, region: Region, p: Vec3, n: Vec3) -> Vec3 {
     let c = |a: usize| frame.e[a][1] * n.x + frame.e[a][2] * n.y + frame.e[a][3] * n.z;
     Vec3::new(c(1), c(2), c(3)).normalize()
 }
+
+/// Measures of area for density estimation (photon mapping).
+impl Propagator {
+    /// Proper area per unit world area of a surface element at world point `p` with world unit
+    /// normal `n`. The static frame maps world vectors by `J = diag(1/κ, 1, 1)` (radial first),
+    /// so by Nanson's formula `da = det J · |J⁻ᵀ n| dA = √(n_t² + κ² n_r²) / κ · dA`: 1 for a
+    /// sphere about the centre, `1/κ` for a surface containing the radial direction.
+    pub fn area_scale(&self, p: Vec3, n: Vec3) -> f64 {
+        let kappa = self.radial_scale(p);
+        if kappa == 1.0 || p == Vec3::ZERO {
+            return 1.0;
+        }
+        let radial = n.dot(p.normalize());
+        let tangential2 = (n.length_squared() - radial * radial).max(0.0);
+        (tangential2 + kappa * kappa * radial * radial).sqrt() / kappa
+    }
+}

@@ -49,6 +49,8 @@ struct RegionScene {
     /// (radiance luminance × area) for choosing one.
     lights: Vec<usize>,
     light_cdf: Vec<f64>,
+    /// The total of those powers (world areas), for choosing between regions.
+    light_power: f64,
     sky: Sky,
 }
 
@@ -73,7 +75,7 @@ impl RegionScene {
         for c in &mut light_cdf {
             *c /= total;
         }
-        Self { objects, bvh, lights, light_cdf, sky }
+        Self { objects, bvh, lights, light_cdf, light_power: total, sky }
     }
 }
 
@@ -167,6 +169,12 @@ impl World {
         self.region(region).lights.len()
     }
 
+    /// Total power of a region's emitters as [`World::choose_light`] weighs them (radiance
+    /// luminance × world area × sides); 0 without emitters.
+    pub fn light_power(&self, region: Region) -> f64 {
+        self.region(region).light_power
+    }
+
     /// Picks an emitter in proportion to its power.
     pub fn choose_light(&self, region: Region, u: f64) -> Option<LightChoice> {
         let r = self.region(region);
@@ -211,6 +219,9 @@ mod tests {
         assert_eq!(w.light_count(Region::Upper), 2);
         assert!((w.light_probability(Region::Upper, 0) - 0.25).abs() < 1e-12);
         assert!((w.light_probability(Region::Upper, 1) - 0.75).abs() < 1e-12);
+        // One-sided spheres of radius 1: 4π × (1 + 3).
+        assert!((w.light_power(Region::Upper) - 16.0 * std::f64::consts::PI).abs() < 1e-9);
+        assert_eq!(w.light_power(Region::Lower), 0.0);
         assert_eq!(w.choose_light(Region::Upper, 0.1).unwrap().object, 0);
         assert_eq!(w.choose_light(Region::Upper, 0.3).unwrap().object, 1);
         assert!(w.choose_light(Region::Lower, 0.3).is_none());
