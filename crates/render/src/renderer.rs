@@ -3,7 +3,7 @@
 //! at any tile boundary with everything finished so far kept.
 
 use crate::film::{Film, FilmTile, TileBounds};
-use crate::integrator::{PathIntegrator, PathStats};
+use crate::integrator::{photon, PathIntegrator, PathStats};
 use crate::propagator::Propagator;
 use crate::sampling::Rng;
 use crate::scene::Scene;
@@ -25,7 +25,8 @@ pub struct RenderStats {
     /// Samples whose radiance was not finite (rejected by the film and counted here).
     pub nan_samples: u64,
     pub seconds: f64,
-    /// Tiles finished out of the total (less than total after an interruption).
+    /// Tiles finished out of the total (less than total after an interruption); iterations for
+    /// the photon integrator.
     pub tiles_done: u64,
     pub tiles_total: u64,
 }
@@ -46,7 +47,7 @@ pub fn propagator(scene: &Scene) -> Propagator {
 
 /// Sub-pixel position `[0, 1)²` of sample `s` of `spp`: a jittered `k × k` grid when `spp = k²`
 /// (as the poster used), otherwise `spp` strata in x with uniform y.
-fn stratified(s: u32, spp: u32, rng: &mut Rng) -> [f64; 2] {
+pub(crate) fn stratified(s: u32, spp: u32, rng: &mut Rng) -> [f64; 2] {
     let k = (f64::from(spp)).sqrt() as u32;
     let [a, b] = rng.next_2d();
     if k * k == spp {
@@ -79,11 +80,15 @@ fn render_tile(scene: &Scene, integrator: &PathIntegrator<'_>, bounds: TileBound
 }
 
 /// Renders `scene` on the current rayon pool. `cancel` stops it between tiles; `progress` is
-/// told `(tiles done, tiles total)` after every tile.
+/// told `(tiles done, tiles total)` after every tile. The photon integrator works in iterations
+/// over the whole image instead, see [`photon::render`].
 pub fn render(scene: &Scene, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> (Film, RenderStats) {
     let start = Instant::now();
     let settings = &scene.settings;
     let propagator = propagator(scene);
+    if settings.integrator == IntegratorKind::Photon {
+        return photon::render(scene, &propagator, cancel, progress);
+    }
     let integrator = PathIntegrator::new(
         &scene.world,
         &propagator,

@@ -93,6 +93,13 @@ fn out_of_range_values_point_at_the_value() {
     check("[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 5]\n", 3, "camera.look_at", &["must differ"]);
     check("[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nup = [0, 0, 2]\n", 4, "camera.up", &["parallel"]);
     check(&format!("{CAMERA}[render]\nwidth = 0\n"), 6, "render.width", &["from 1 to"]);
+    let photon = format!("{CAMERA}[render]\nintegrator = \"photon\"\n");
+    check(&format!("{photon}photon_radius = 0\n"), 7, "render.photon_radius", &["must be > 0, got 0"]);
+    check(&format!("{photon}photons_per_iteration = 0\n"), 7, "render.photons_per_iteration", &["got 0"]);
+    check(&format!("{CAMERA}[render]\nphoton_radius = 1\n"), 6, "render.photon_radius", &["only used with"]);
+    // Photons are traced forwards; a spinning hole's light rays cannot be reversed.
+    let kerr = format!("[spacetime]\ntype = \"kerr\"\nmass = 1\nspin = 0.5\n{photon}");
+    check(&kerr, 10, "render.integrator", &["time-symmetric", "kerr"]);
     check(
         &format!("{CAMERA}[materials.m]\ntype = \"diffuse\"\nreflectance = [1.5, 0, 0]\n"),
         7,

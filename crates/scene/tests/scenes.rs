@@ -148,6 +148,15 @@ fn render_settings_are_read() {
         }
         other => panic!("{other:?}"),
     }
+    let s = parse(&format!(
+        "{CAMERA}[render]\nintegrator = \"photon\"\nphotons_per_iteration = 5000\nphoton_radius = 0.05\n"
+    ))
+    .settings;
+    assert_eq!(s.integrator, IntegratorKind::Photon);
+    assert_eq!((s.photon.per_iteration, s.photon.radius), (Some(5000), Some(0.05)));
+    let s = parse(&format!("[spacetime]\ntype = \"ellis\"\nthroat = 1\n{CAMERA}[render]\nintegrator = \"photon\"\n"))
+        .settings;
+    assert_eq!((s.integrator, s.photon.per_iteration, s.photon.radius), (IntegratorKind::Photon, None, None));
     for name in ["box", "tent", "gaussian", "mitchell", "blackman-harris"] {
         parse(&format!("{CAMERA}[render]\nfilter = \"{name}\"\n"));
         parse(&format!("{CAMERA}[render]\nfilter = {{ type = \"{name}\", radius = 1 }}\n"));

@@ -5,6 +5,7 @@
 //! [`Propagator`]: crate::propagator::Propagator
 
 mod path;
+pub mod photon;
 mod stats;
 
 pub use path::PathIntegrator;

@@ -182,7 +182,7 @@ impl<'a> PathIntegrator<'a> {
 
 /// Radiance factor of a segment whose far end measures the photon at `energy` (relative to the
 /// near end): `(ν_near / ν_far)⁴`.
-fn shift(energy: f64) -> f32 {
+pub(super) fn shift(energy: f64) -> f32 {
     if energy == 1.0 {
         1.0
     } else {
@@ -193,7 +193,7 @@ fn shift(energy: f64) -> f32 {
 /// Start of the next segment from a hit at `p`: off the surface on the side `direction` goes.
 /// The side is decided in the local frame (normal covector `ng_local` against the local
 /// direction), the offset taken along the world normal `ng`.
-fn leave(p: Vec3, ng: Vec3, ng_local: Vec3, direction: Vec3) -> Vec3 {
+pub(super) fn leave(p: Vec3, ng: Vec3, ng_local: Vec3, direction: Vec3) -> Vec3 {
     let side = if direction.dot(ng_local) >= 0.0 { ng } else { -ng };
     offset_origin(p, ng, side)
 }

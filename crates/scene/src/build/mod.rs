@@ -62,7 +62,7 @@ pub(crate) fn scene<'a>(doc: &'a Doc<'a>, root: &'a Spanned<DeTable<'a>>, base_d
     let animation = camera::animation(animation_table.as_ref(), &camera_table, rig, &spacetime, axis)?;
     let camera = animation.rig.camera_at(0.0, &spacetime, axis).map_err(|e| camera_table.err(e))?;
     let settings = match root.get("render") {
-        Some(n) => settings::render_settings(&n.table(settings::RENDER_KEYS)?)?,
+        Some(n) => settings::render_settings(&n.table(settings::RENDER_KEYS)?, &spacetime)?,
         None => render::settings::RenderSettings::default(),
     };
     let upper_sky = match root.get("sky") {

@@ -2,7 +2,9 @@
 
 use crate::reader::{num, Node, Result, Table};
 use render::film::{Curve, Filter, FilterError, ToneMap, MITCHELL_RECOMMENDED_B_C};
-use render::settings::{IntegratorKind, Intersection, RenderSettings};
+use render::integrator::photon;
+use render::settings::{IntegratorKind, Intersection, PhotonSettings, RenderSettings};
+use spacetime::Spacetime;
 
 pub(super) const RENDER_KEYS: &[&str] = &[
     "width",
@@ -11,6 +13,8 @@ pub(super) const RENDER_KEYS: &[&str] = &[
     "max_depth",
     "seed",
     "integrator",
+    "photons_per_iteration",
+    "photon_radius",
     "intersection",
     "poster_step",
     "poster_max_iterations",
@@ -25,15 +29,28 @@ const MAX_SIDE: u32 = 16384;
 /// The most samples per pixel accepted (as the command line's `--spp`).
 const MAX_SPP: u32 = 1 << 20;
 const MAX_DEPTH: u32 = 1024;
+/// The most photons per iteration accepted.
+const MAX_PHOTONS: u64 = 1 << 32;
 
-pub(super) fn render_settings(t: &Table<'_>) -> Result<RenderSettings> {
+/// `[render]`, in a scene of `spacetime` (the photon integrator needs a time-symmetric one).
+pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<RenderSettings> {
     let d = RenderSettings::default();
     let integrator = match t.get("integrator") {
         Some(n) => {
-            [IntegratorKind::Path, IntegratorKind::BruteForce][n.keyword("integrator", &["path", "brute-force"])?]
+            const KINDS: [IntegratorKind; 3] =
+                [IntegratorKind::Path, IntegratorKind::BruteForce, IntegratorKind::Photon];
+            KINDS[n.keyword("integrator", &["path", "brute-force", "photon"])?]
         }
         None => d.integrator,
     };
+    if integrator == IntegratorKind::Photon && !photon::supports(spacetime) {
+        return Err(t.loc("integrator").err(format!(
+            "\"photon\" traces light forwards, which needs a time-symmetric spacetime; {} is not \
+             (use \"path\" or \"brute-force\")",
+            spacetime.name()
+        )));
+    }
+    let photon = photon_settings(t, integrator)?;
     let intersection = match t.get("intersection") {
         Some(n) => [Intersection::Chord, Intersection::POSTER][n.keyword("intersection", &["chord", "poster"])?],
         None => d.intersection,
@@ -75,6 +92,7 @@ pub(super) fn render_settings(t: &Table<'_>) -> Result<RenderSettings> {
         max_depth: t.or("max_depth", d.max_depth, |n| n.u32_in(0, MAX_DEPTH))?,
         seed: t.or("seed", d.seed, |n| n.u64())?,
         integrator,
+        photon,
         intersection,
         filter: match t.get("filter") {
             Some(n) => filter(&n)?,
@@ -83,6 +101,27 @@ pub(super) fn render_settings(t: &Table<'_>) -> Result<RenderSettings> {
         tonemap: ToneMap { exposure_ev, curve },
         geodesic_rtol,
     })
+}
+
+/// `photons_per_iteration` and `photon_radius`, only with `integrator = "photon"`.
+fn photon_settings(t: &Table<'_>, integrator: IntegratorKind) -> Result<PhotonSettings> {
+    if integrator != IntegratorKind::Photon {
+        for key in ["photons_per_iteration", "photon_radius"] {
+            if t.get(key).is_some() {
+                return Err(t.loc(key).err("only used with integrator = \"photon\""));
+            }
+        }
+        return Ok(PhotonSettings::default());
+    }
+    let per_iteration = t.opt("photons_per_iteration", |n| n.u64())?;
+    if let Some(p) = per_iteration.filter(|&p| !(1..=MAX_PHOTONS).contains(&p)) {
+        return Err(t.loc("photons_per_iteration").err(format!("must be in 1–{MAX_PHOTONS}, got {p}")));
+    }
+    let radius = t.opt("photon_radius", |n| n.f64())?;
+    if let Some(r) = radius.filter(|r| !(*r > 0.0 && r.is_finite())) {
+        return Err(t.loc("photon_radius").err(format!("must be > 0, got {}", num(r))));
+    }
+    Ok(PhotonSettings { per_iteration, radius })
 }
 
 const FILTERS: &[(&str, &[&str])] = &[

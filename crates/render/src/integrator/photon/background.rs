@@ -1,0 +1,92 @@
+//! Light that photons do not carry — the skies, and emitters of infinite area (only finite ones
+//! can be sampled for photons) — gathered at a visible point by continuing the camera path as a
+//! brute-force path tracer that counts only that light. Transport is linear in its sources, so
+//! this and the photons together are the whole image; skies are large and found easily by
+//! paths, small lamps by photons.
+
+use super::super::path::{leave, shift};
+use super::super::stats::PathStats;
+use crate::color::Rgb;
+use crate::geometry::{Frame, Vec3};
+use crate::material::Bsdf;
+use crate::propagator::{Propagator, RayEnd};
+use crate::sampling::Rng;
+use crate::sky::Sky;
+use crate::world::World;
+use spacetime::Region;
+
+/// Paths start surviving Russian roulette unconditionally for this many bounces (as path.rs).
+const ROULETTE_START: u32 = 2;
+
+/// A scattering vertex of a camera path.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Vertex {
+    pub region: Region,
+    pub p: Vec3,
+    /// World and local geometric normals.
+    pub ng: Vec3,
+    pub ng_local: Vec3,
+    pub frame: Frame,
+    pub wo: Vec3,
+    pub bsdf: Bsdf,
+    /// Camera throughput to here.
+    pub beta: Rgb,
+    /// Surface interactions so far, this one included.
+    pub depth: u32,
+}
+
+/// Whether `world` has light that photons do not carry.
+pub(super) fn present(world: &World) -> bool {
+    let black = |sky: &Sky| matches!(sky, Sky::Constant(c) if *c == Rgb::ZERO);
+    let infinite_emitter =
+        |region: Region| world.objects(region).iter().any(|o| o.emission.is_some() && !o.shape.area().is_finite());
+    [Region::Upper, Region::Lower].iter().any(|&r| !black(world.sky(r)) || infinite_emitter(r))
+}
+
+/// One path sample of that light scattered at `vertex` towards the camera.
+pub(super) fn radiance(
+    world: &World,
+    propagator: &Propagator,
+    max_depth: u32,
+    vertex: Vertex,
+    rng: &mut Rng,
+    stats: &mut PathStats,
+) -> Rgb {
+    let Vertex { mut region, mut p, mut ng, mut ng_local, mut frame, mut wo, mut bsdf, mut beta, mut depth } = vertex;
+    let mut radiance = Rgb::ZERO;
+    while depth <= max_depth {
+        let Some(sample) = bsdf.sample(wo, rng.next_f64(), rng.next_2d()) else { return radiance };
+        beta *= sample.weight;
+        let rr_beta = f64::from(beta.max_element()) * sample.eta * sample.eta;
+        if beta == Rgb::ZERO || !beta.is_finite() {
+            return radiance;
+        }
+        if depth >= ROULETTE_START && rr_beta < 1.0 {
+            if rng.next_f64() >= rr_beta {
+                return radiance;
+            }
+            beta /= rr_beta as f32;
+        }
+        let direction = frame.to_world(sample.wi);
+        stats.rays += 1;
+        let arrival = match propagator.trace(world, region, leave(p, ng, ng_local, direction), direction) {
+            RayEnd::Hit(a) => a,
+            RayEnd::Escaped { region, direction, energy, .. } => {
+                return radiance + beta * shift(energy) * world.sky(region).radiance(direction);
+            }
+            RayEnd::Captured | RayEnd::Failed => return radiance,
+        };
+        beta *= shift(arrival.energy);
+        let object = world.object(arrival.region, arrival.object);
+        let hit = &arrival.hit;
+        ng_local = propagator.local_normal(arrival.region, hit.p, hit.ng);
+        if let Some(emission) = object.emission.filter(|_| !object.shape.area().is_finite()) {
+            radiance += beta * emission.radiance_towards(ng_local, -arrival.direction);
+        }
+        (region, p, ng, depth) = (arrival.region, hit.p, hit.ng, depth + 1);
+        bsdf = world.materials[object.material].bsdf(hit.uv, hit.p);
+        frame = Frame::from_normal(propagator.local_normal(region, hit.p, hit.ns));
+        wo = frame.to_local(-arrival.direction);
+    }
+    radiance
+}

@@ -1,0 +1,229 @@
+//! Stochastic progressive photon mapping, SPPM (Hachisuka & Jensen 2009; pbrt-v3 §16.2), in
+//! curved spacetime.
+//!
+//! Every iteration traces one camera path per pixel to its visible point (see [`visible`]),
+//! then a fixed number of photons from the lights (see [`emit`], [`trace`]), gathered by the
+//! visible points within each pixel's radius, which shrinks from iteration to iteration (see
+//! [`pixel`]). Skies and infinite emitters, which photons cannot start from, are gathered by
+//! paths continued from the visible points (see [`background`]). Lights that camera paths rarely hit by chance — a lamp in a room seen through a
+//! wormhole's throat — are found from their side instead. The estimate is consistent: it
+//! converges to the path tracer's image as iterations grow.
+//!
+//! Determinism: camera paths draw from the stream of (seed, pixel, iteration); photons are
+//! traced in fixed chunks, each with the stream of (seed, chunk, iteration), and what they
+//! deposit is summed chunk by chunk in chunk order. The image does not depend on the threads.
+//!
+//! Photons follow geodesics forwards, which needs a spacetime whose light rays can be
+//! reversed: static and time-symmetric (Minkowski, Schwarzschild, Ellis). Kerr is not.
+
+mod background;
+mod emit;
+mod grid;
+mod pixel;
+mod trace;
+mod visible;
+
+use super::stats::PathStats;
+use crate::color::Rgb;
+use crate::film::Film;
+use crate::propagator::Propagator;
+use crate::renderer::{stratified, RenderStats};
+use crate::sampling::Rng;
+use crate::scene::Scene;
+use crate::world::World;
+use grid::{Grid, Sphere};
+use pixel::PixelEstimate;
+use rayon::prelude::*;
+use spacetime::{Region, Spacetime};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+use trace::{Deposit, PhotonPass};
+use visible::{CameraPass, CameraSample, VisiblePoint};
+
+/// Photons per chunk: the unit of parallel work and of the fixed summation order.
+const CHUNK: u64 = 1024;
+/// Mixed into the seed of photon streams, so that they differ from the camera streams.
+const PHOTON_STREAMS: u64 = 0x7068_6f74_6f6e_7321;
+/// Default initial radius as a fraction of the largest region's bounding-box diagonal.
+const DEFAULT_RADIUS_FRACTION: f64 = 0.01;
+
+/// Whether photons can be traced forwards in `spacetime` (see the module documentation).
+pub fn supports(spacetime: &Spacetime) -> bool {
+    !matches!(spacetime, Spacetime::Kerr(_))
+}
+
+/// Renders `scene` with SPPM, `scene.settings.spp` iterations. `cancel` stops it between
+/// iterations (an unfinished iteration is dropped); `progress` is told `(iterations done,
+/// iterations total)`.
+///
+/// # Panics
+/// If the spacetime is not [supported](supports); scene files are checked for it when loaded.
+pub fn render(
+    scene: &Scene,
+    propagator: &Propagator,
+    cancel: &AtomicBool,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> (Film, RenderStats) {
+    assert!(supports(&scene.spacetime), "photon mapping needs a time-symmetric spacetime, not {:?}", scene.spacetime);
+    let start = Instant::now();
+    let settings = &scene.settings;
+    let pixel_count = settings.width as usize * settings.height as usize;
+    let photons = settings.photon.per_iteration.unwrap_or(pixel_count as u64);
+    let radius = settings.photon.radius.unwrap_or_else(|| default_radius(&scene.world));
+    let mut pixels = vec![PixelEstimate::new(radius); pixel_count];
+    let camera = CameraPass {
+        world: &scene.world,
+        propagator,
+        max_depth: settings.max_depth,
+        background: background::present(&scene.world),
+    };
+    let mut stats = PathStats::default();
+    let mut done = 0u32;
+    for iteration in 0..settings.spp {
+        if cancel.load(Ordering::Relaxed) {
+            break;
+        }
+        let (samples, camera_stats) = camera_pass(scene, &camera, iteration);
+        let visible: Vec<Option<VisiblePoint>> = samples.iter().map(|(s, _)| s.visible).collect();
+        let radii: Vec<f64> = pixels.iter().map(PixelEstimate::radius).collect();
+        let pass = PhotonPass {
+            world: &scene.world,
+            propagator,
+            max_depth: settings.max_depth,
+            upper: grid(&visible, &radii, Region::Upper),
+            lower: grid(&visible, &radii, Region::Lower),
+            visible: &visible,
+            radii: &radii,
+        };
+        let Some((flux, found, photon_stats)) = photon_pass(&pass, settings.seed, iteration, photons, cancel) else {
+            break;
+        };
+        for (i, pixel) in pixels.iter_mut().enumerate() {
+            let (sample, weight) = &samples[i];
+            pixel.add_iteration(sample.emitted, *weight, flux[i], found[i]);
+        }
+        stats += camera_stats;
+        stats += photon_stats;
+        done += 1;
+        progress(u64::from(done), u64::from(settings.spp));
+    }
+    let mut film = Film::new(settings.width, settings.height);
+    for (i, pixel) in pixels.iter().enumerate() {
+        if let Some(l) = pixel.radiance(photons) {
+            let (x, y) = ((i % settings.width as usize) as u32, (i / settings.width as usize) as u32);
+            film.add_sample(x, y, l, 1.0);
+        }
+    }
+    let stats = RenderStats {
+        paths: stats,
+        samples: u64::from(done) * pixel_count as u64,
+        nan_samples: film.nan_samples(),
+        seconds: start.elapsed().as_secs_f64(),
+        tiles_done: u64::from(done),
+        tiles_total: u64::from(settings.spp),
+    };
+    (film, stats)
+}
+
+/// 1 % of the diagonal of the larger region's bounds (1 in a scene without finite objects).
+fn default_radius(world: &World) -> f64 {
+    let diagonal = [Region::Upper, Region::Lower]
+        .iter()
+        .map(|&r| world.bounds(r))
+        .filter(|b| !b.is_empty())
+        .map(|b| b.diagonal().length())
+        .filter(|d| d.is_finite())
+        .fold(0.0, f64::max);
+    if diagonal > 0.0 {
+        DEFAULT_RADIUS_FRACTION * diagonal
+    } else {
+        1.0
+    }
+}
+
+/// One camera path per pixel, row-major, with its filter weight.
+fn camera_pass(scene: &Scene, camera: &CameraPass<'_>, iteration: u32) -> (Vec<(CameraSample, f64)>, PathStats) {
+    let settings = &scene.settings;
+    let rows: Vec<(Vec<(CameraSample, f64)>, PathStats)> = (0..settings.height)
+        .into_par_iter()
+        .map(|y| {
+            let mut stats = PathStats::default();
+            let row = (0..settings.width)
+                .map(|x| {
+                    let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
+                    let mut rng = Rng::for_sample(settings.seed, pixel, u64::from(iteration));
+                    let fs = settings.filter.sample(stratified(iteration, settings.spp, &mut rng));
+                    let film_x = f64::from(x) + 0.5 + fs.offset[0];
+                    let film_y = f64::from(y) + 0.5 + fs.offset[1];
+                    let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, rng.next_2d());
+                    let beta = Rgb::splat(ray.weight * fs.weight as f32);
+                    let start = (scene.camera.region, ray.origin, ray.direction);
+                    (camera.trace(start, beta, &mut rng, &mut stats), fs.weight)
+                })
+                .collect();
+            (row, stats)
+        })
+        .collect();
+    let mut stats = PathStats::default();
+    let mut samples = Vec::with_capacity(settings.width as usize * settings.height as usize);
+    for (row, s) in rows {
+        samples.extend(row);
+        stats += s;
+    }
+    (samples, stats)
+}
+
+/// The hash grid of the visible points of `region`.
+fn grid(visible: &[Option<VisiblePoint>], radii: &[f64], region: Region) -> Grid {
+    let spheres: Vec<Sphere> = visible
+        .iter()
+        .zip(radii)
+        .enumerate()
+        .filter_map(|(i, (vp, &radius))| {
+            let vp = vp.as_ref().filter(|vp| vp.region == region)?;
+            Some(Sphere { index: i as u32, centre: vp.p, radius })
+        })
+        .collect();
+    Grid::build(&spheres)
+}
+
+/// Per-pixel flux sums and photon counts of one iteration's photons; `None` if cancelled.
+fn photon_pass(
+    pass: &PhotonPass<'_>,
+    seed: u64,
+    iteration: u32,
+    photons: u64,
+    cancel: &AtomicBool,
+) -> Option<(Vec<[f64; 3]>, Vec<u64>, PathStats)> {
+    let chunks: Vec<Option<(Vec<Deposit>, PathStats)>> = (0..photons.div_ceil(CHUNK))
+        .into_par_iter()
+        .map(|chunk| {
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
+            let mut rng = Rng::for_sample(seed ^ PHOTON_STREAMS, chunk, u64::from(iteration));
+            let (mut deposits, mut stats) = (Vec::new(), PathStats::default());
+            for _ in chunk * CHUNK..((chunk + 1) * CHUNK).min(photons) {
+                if let Some(photon) = emit::emit(pass.world, pass.propagator, &mut rng) {
+                    pass.trace(photon, &mut rng, &mut stats, &mut deposits);
+                }
+            }
+            Some((deposits, stats))
+        })
+        .collect();
+    let mut flux = vec![[0.0; 3]; pass.visible.len()];
+    let mut found = vec![0; pass.visible.len()];
+    let mut stats = PathStats::default();
+    for chunk in chunks {
+        let (deposits, s) = chunk?;
+        for d in deposits {
+            let i = d.pixel as usize;
+            for (f, c) in flux[i].iter_mut().zip(d.flux.to_array()) {
+                *f += f64::from(c);
+            }
+            found[i] += 1;
+        }
+        stats += s;
+    }
+    Some((flux, found, stats))
+}
