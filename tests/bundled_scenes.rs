@@ -1,4 +1,5 @@
-//! Every bundled scene renders at a tiny size with no NaN sample and no failed ray.
+//! Every bundled scene, from every view, renders at a tiny size with no NaN sample and no failed
+//! ray.
 
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
@@ -14,14 +15,19 @@ fn every_bundled_scene_renders() {
         .collect();
     paths.sort();
     assert!(!paths.is_empty());
-    for path in paths {
-        let mut scene = scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let views = paths.iter().flat_map(|path| {
+        let text = std::fs::read_to_string(path).unwrap();
+        let names = scene::view_names(&text).into_iter().map(Some);
+        std::iter::once(None).chain(names).map(move |view| (path.clone(), view))
+    });
+    for (path, view) in views {
+        let mut scene = scene::load_view(&path, view.as_deref()).unwrap_or_else(|e| panic!("{e}"));
         scene.settings.width = 12;
         scene.settings.height = 10;
         scene.settings.spp = 2;
         scene.settings.max_depth = scene.settings.max_depth.min(4);
         let (film, stats) = render::renderer::render(&scene, &AtomicBool::new(false), &|_, _| {});
-        let name = path.display();
+        let name = format!("{} (view {view:?})", path.display());
         assert_eq!(stats.nan_samples, 0, "{name}: NaN samples");
         assert_eq!(stats.paths.fates.failed, 0, "{name}: failed rays");
         assert_eq!(stats.samples, 12 * 10 * 2, "{name}");

@@ -4,7 +4,7 @@
 //! Frame `n` is exactly the still `nullpath render --time n/fps` (same seed, same pixels), so a
 //! frame can be re-rendered or checked on its own.
 
-use super::render::{cancel_on_interrupt, load_scene, summary, RenderOptions};
+use super::render::{cancel_on_interrupt, summary, RenderOptions};
 use clap::{Parser, ValueEnum};
 use render::film::write_image;
 use std::ops::Range;
@@ -82,8 +82,7 @@ fn is_complete(path: &Path, width: u32, height: u32) -> bool {
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
-    let mut scene = load_scene(Some(&args.scene))?;
-    args.options.apply(&mut scene)?;
+    let mut scene = args.options.load(Some(&args.scene))?;
     let Some(mut animation) = scene.animation.clone() else {
         return Err(format!("{}: the scene has no camera to animate", args.scene.display()));
     };

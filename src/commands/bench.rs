@@ -78,7 +78,7 @@ pub fn run(args: &Args) -> Result<(), String> {
     }
     match args.workload {
         Workload::Geodesics => geodesics(args),
-        Workload::Cornell => scene_bench(args, "cornell", super::render::load_scene(None)?).map(|_| ()),
+        Workload::Cornell => scene_bench(args, "cornell", super::render::load_scene(None, None)?).map(|_| ()),
         Workload::Room => {
             let curved = scene::parse(ROOM_SCENE, "scenes/room-black-hole.toml", std::path::Path::new("."))
                 .map_err(|e| e.to_string())?;

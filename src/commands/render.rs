@@ -32,9 +32,12 @@ pub struct Args {
     stats: Option<PathBuf>,
 }
 
-/// Options shared by the commands that render: image size, sampling, threads, reporting.
+/// Options shared by the commands that render: view, image size, sampling, threads, reporting.
 #[derive(clap::Args, Debug)]
 pub struct RenderOptions {
+    /// Render from the scene's view NAME (its `[views.NAME]` camera) instead of its `[camera]`.
+    #[arg(long, value_name = "NAME")]
+    view: Option<String>,
     #[arg(long)]
     width: Option<u32>,
     #[arg(long)]
@@ -52,17 +55,24 @@ pub struct RenderOptions {
     pub quiet: bool,
 }
 
-/// Loads the named scene or the default one.
-pub fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
+/// Loads the named scene or the default one, from its `[camera]` or the view `view`.
+pub fn load_scene(path: Option<&Path>, view: Option<&str>) -> Result<Scene, String> {
     match path {
-        Some(p) => scene::load(p).map_err(|e| e.to_string()),
-        None => scene::parse(DEFAULT_SCENE, DEFAULT_SCENE_NAME, Path::new(".")).map_err(|e| e.to_string()),
+        Some(p) => scene::load_view(p, view).map_err(|e| e.to_string()),
+        None => scene::parse_view(DEFAULT_SCENE, DEFAULT_SCENE_NAME, Path::new("."), view).map_err(|e| e.to_string()),
     }
 }
 
 impl RenderOptions {
+    /// The scene at `path` (or the default scene) from the chosen view, with the overrides.
+    pub fn load(&self, path: Option<&Path>) -> Result<Scene, String> {
+        let mut scene = load_scene(path, self.view.as_deref())?;
+        self.apply(&mut scene)?;
+        Ok(scene)
+    }
+
     /// Applies the command-line overrides to the scene's settings.
-    pub fn apply(&self, scene: &mut Scene) -> Result<(), String> {
+    fn apply(&self, scene: &mut Scene) -> Result<(), String> {
         let s = &mut scene.settings;
         let positive = |name: &str, v: Option<u32>, max: u32| match v {
             Some(0) => Err(format!("--{name} must be at least 1")),
@@ -167,8 +177,7 @@ pub fn summary(stats: &RenderStats, scene: &Scene) -> String {
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
-    let mut scene = load_scene(args.scene.as_deref())?;
-    args.options.apply(&mut scene)?;
+    let mut scene = args.options.load(args.scene.as_deref())?;
     if !args.time.is_finite() {
         return Err(format!("--time must be a finite number of seconds, got {}", args.time));
     }

@@ -45,6 +45,12 @@ use toml::de::DeTable;
 /// Reads and builds the scene file at `path`. Relative paths inside it (OBJ meshes, image
 /// textures, equirectangular skies) are resolved against the directory that holds it.
 pub fn load(path: &Path) -> Result<render::scene::Scene, SceneError> {
+    load_view(path, None)
+}
+
+/// As [`load`], seen from the scene's view `view` (a `[views.NAME]` camera) instead of its
+/// `[camera]` when given.
+pub fn load_view(path: &Path, view: Option<&str>) -> Result<render::scene::Scene, SceneError> {
     let origin = path.display().to_string();
     let bytes =
         std::fs::read(path).map_err(|e| SceneError::file(&origin, format!("cannot read: {}", io_message(&e))))?;
@@ -67,16 +73,40 @@ pub fn load(path: &Path) -> Result<render::scene::Scene, SceneError> {
         Some(dir) if !dir.as_os_str().is_empty() => dir,
         _ => Path::new("."),
     };
-    parse(&text, &origin, base_dir)
+    parse_view(&text, &origin, base_dir, view)
 }
 
 /// Builds the scene described by `text`. `origin` names it in error messages (a path, or e.g.
 /// `"<default scene>"`); relative paths inside it are resolved against `base_dir`.
 pub fn parse(text: &str, origin: &str, base_dir: &Path) -> Result<render::scene::Scene, SceneError> {
+    parse_view(text, origin, base_dir, None)
+}
+
+/// As [`parse`], seen from the view `view` (a `[views.NAME]` camera) when given.
+pub fn parse_view(
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+    view: Option<&str>,
+) -> Result<render::scene::Scene, SceneError> {
     let root = DeTable::parse(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         SceneError::at(origin, text, offset, None, format!("invalid TOML: {}", e.message().trim_end()))
     })?;
     let doc = Doc { origin, text };
-    build::scene(&doc, &root, base_dir)
+    build::scene(&doc, &root, base_dir, view)
+}
+
+/// The names of the `[views.NAME]` cameras in the scene text `text`, in file order; empty when
+/// it has none or is not valid TOML (which [`parse`] reports).
+pub fn view_names(text: &str) -> Vec<String> {
+    let Ok(root) = DeTable::parse(text) else {
+        return Vec::new();
+    };
+    let Some(toml::de::DeValue::Table(views)) = root.get_ref().get("views").map(|v| v.get_ref()) else {
+        return Vec::new();
+    };
+    let mut names: Vec<_> = views.keys().map(|k| (k.span().start, k.get_ref().to_string())).collect();
+    names.sort();
+    names.into_iter().map(|(_, name)| name).collect()
 }

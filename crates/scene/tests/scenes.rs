@@ -349,3 +349,18 @@ fn documentation_examples_parse() {
         }
     }
 }
+
+#[test]
+fn views_name_other_cameras() {
+    let text = format!("{CAMERA}[views.top]\nposition = [0, 9, 0.1]\nlook_at = [0, 0, 0]\n[views.side]\nposition = [9, 0, 0]\nlook_at = [0, 0, 0]\n");
+    assert_eq!(scene::view_names(&text), ["top", "side"]);
+    let top = scene::parse_view(&text, "v.toml", Path::new("."), Some("top")).unwrap();
+    assert_eq!(top.camera.position, render::geometry::Vec3::new(0.0, 9.0, 0.1));
+    assert_eq!(parse(&text).camera.position, render::geometry::Vec3::new(0.0, 0.0, 5.0));
+    let err = scene::parse_view(&text, "v.toml", Path::new("."), Some("front")).unwrap_err().to_string();
+    assert!(err.contains("no view named \"front\"") && err.contains("\"top\", \"side\""), "{err}");
+    // A mistake in a view that is not rendered is still an error, at its line.
+    let bad = format!("{CAMERA}[views.top]\nposition = [0, 9, 0.1]\nlook_at = [0, 9, 0.1]\n");
+    let err = scene::parse(&bad, "v.toml", Path::new(".")).unwrap_err().to_string();
+    assert!(err.starts_with("v.toml:7:") && err.contains("views.top.look_at"), "{err}");
+}

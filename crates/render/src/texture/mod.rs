@@ -11,11 +11,13 @@
 //! | `"checker"` | [`Texture::Checker`]  | [`checker`] | unit squares of `st` alternating two textures      |
 //! | `"grid"`    | [`Texture::Grid`]     | [`grid`]    | lines on a background, optional coloured lines     |
 //! | `"image"`   | [`Texture::Image`]    | [`image`]   | a PNG / EXR / HDR file, bilinear, repeating        |
+//! | `"earth"`   | [`Texture::Earth`]    | [`earth`]   | a procedural planet for a sphere's `uv`            |
 //!
 //! Colours are linear RGB. Procedural textures are evaluated at a point (no filtering); path tracing
 //! with many samples per pixel antialiases them.
 
 pub mod checker;
+pub mod earth;
 pub mod grid;
 pub mod image;
 
@@ -38,6 +40,8 @@ pub enum Texture {
     Grid { background: Rgb, line: Rgb, spacing: f64, width: f64, highlights: Vec<GridHighlight>, uv_scale: [f64; 2] },
     /// An image repeating every unit of `st`, bilinearly filtered; `v` runs up the image.
     Image { image: Arc<ImageData>, uv_scale: [f64; 2] },
+    /// Oceans, continents, ice and clouds, seamless on a sphere (not scaled by `uv_scale`).
+    Earth(Box<earth::Earth>),
 }
 
 impl Texture {
@@ -57,6 +61,7 @@ impl Texture {
                 grid::eval(scale(uv, *uv_scale), *background, *line, *spacing, *width, highlights)
             }
             Texture::Image { image, uv_scale } => image::eval(image, scale(uv, *uv_scale)),
+            Texture::Earth(earth) => earth.eval(uv),
         }
     }
 
@@ -94,6 +99,7 @@ impl Texture {
                 }
             }
             Texture::Image { uv_scale, .. } => scale_ok(uv_scale),
+            Texture::Earth(earth) => earth.validate(),
         }
     }
 

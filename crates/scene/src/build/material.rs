@@ -6,6 +6,7 @@ use crate::reader::{fmt_rgb, num, Node, Result, Table};
 use render::color::Rgb;
 use render::image_io::ImageData;
 use render::material::{ConductorFresnel, Material};
+use render::texture::earth::Earth;
 use render::texture::{GridAxis, GridHighlight, Texture};
 use std::sync::Arc;
 
@@ -21,6 +22,7 @@ const TEXTURES: &[(&str, &[&str])] = &[
     ("checker", &["a", "b", "uv_scale"]),
     ("grid", &["background", "line", "spacing", "width", "highlights", "uv_scale"]),
     ("image", &["file", "uv_scale"]),
+    ("earth", &["seed", "ocean", "clouds"]),
 ];
 
 const HIGHLIGHT_KEYS: &[&str] = &["axis", "index", "colour", "color"];
@@ -153,7 +155,19 @@ impl Builder<'_> {
                     uv_scale: uv_scale([1.0, 1.0])?,
                 }
             }
-            _ => Texture::Image { image: self.image(&t.require("file")?)?, uv_scale: uv_scale([1.0, 1.0])? },
+            "image" => Texture::Image { image: self.image(&t.require("file")?)?, uv_scale: uv_scale([1.0, 1.0])? },
+            _ => {
+                let seed = t.or("seed", 0, |n| n.u32_in(0, u32::MAX))?;
+                let fraction = |key: &str, default: f64| {
+                    let x = t.or(key, default, |n| n.f64())?;
+                    if (0.0..=1.0).contains(&x) {
+                        Ok(x)
+                    } else {
+                        Err(t.loc(key).err(format!("must be a fraction in [0, 1], got {}", num(x))))
+                    }
+                };
+                Texture::Earth(Box::new(Earth::new(seed, fraction("ocean", 0.65)?, fraction("clouds", 0.35)?)))
+            }
         };
         texture.validate().map_err(|e| n.err(e))?;
         Ok(texture)

@@ -35,10 +35,16 @@ pub(crate) struct Builder<'a> {
     two_regions: bool,
 }
 
-const TOP_LEVEL: &[&str] = &["spacetime", "camera", "animation", "render", "sky", "lower", "materials", "objects"];
+const TOP_LEVEL: &[&str] =
+    &["spacetime", "camera", "views", "animation", "render", "sky", "lower", "materials", "objects"];
 
 /// Builds the scene described by the parsed document `root`.
-pub(crate) fn scene<'a>(doc: &'a Doc<'a>, root: &'a Spanned<DeTable<'a>>, base_dir: &'a Path) -> Result<Scene> {
+pub(crate) fn scene<'a>(
+    doc: &'a Doc<'a>,
+    root: &'a Spanned<DeTable<'a>>,
+    base_dir: &'a Path,
+    view: Option<&str>,
+) -> Result<Scene> {
     let root = Table::root(doc, root, TOP_LEVEL)?;
     let spacetime = match root.get("spacetime") {
         Some(n) => spacetime_section(&n.tagged("spacetime", SPACETIMES)?)?,
@@ -53,13 +59,14 @@ pub(crate) fn scene<'a>(doc: &'a Doc<'a>, root: &'a Spanned<DeTable<'a>>, base_d
         default_material: None,
         two_regions: matches!(spacetime, Spacetime::Ellis(_)),
     };
-    let Some(camera) = root.get("camera") else {
-        return Err(root.missing("camera"));
-    };
-    let camera_table = camera.table(camera::CAMERA_KEYS)?;
-    let rig = b.camera_rig(&camera_table)?;
+    let (cameras, chosen) = camera_tables(doc, &root, view)?;
+    let mut rigs = Vec::with_capacity(cameras.len());
+    for t in &cameras {
+        rigs.push(b.camera_rig(t)?);
+    }
+    let (camera_table, rig) = (&cameras[chosen], rigs.swap_remove(chosen));
     let animation_table = root.get("animation").map(|n| n.table(camera::ANIMATION_KEYS)).transpose()?;
-    let animation = camera::animation(animation_table.as_ref(), &camera_table, rig, &spacetime, axis)?;
+    let animation = camera::animation(animation_table.as_ref(), camera_table, rig, &spacetime, axis)?;
     let camera = animation.rig.camera_at(0.0, &spacetime, axis).map_err(|e| camera_table.err(e))?;
     let settings = match root.get("render") {
         Some(n) => settings::render_settings(&n.table(settings::RENDER_KEYS)?, &spacetime)?,
@@ -103,6 +110,29 @@ pub(crate) fn scene<'a>(doc: &'a Doc<'a>, root: &'a Spanned<DeTable<'a>>, base_d
     }
     let world = World::new(b.materials, (upper, upper_sky), (lower, lower_sky));
     Ok(Scene { spacetime, axis, camera, world, settings, animation: Some(animation) })
+}
+
+/// The camera tables, `[camera]` (required) and then the `[views.NAME]`, and the index of
+/// `view`'s.
+fn camera_tables<'a>(doc: &Doc<'a>, root: &Table<'a>, view: Option<&str>) -> Result<(Vec<Table<'a>>, usize)> {
+    let main = root.get("camera").ok_or_else(|| root.missing("camera"))?.table(camera::CAMERA_KEYS)?;
+    let views = root.get("views").map(|n| n.any_table()).transpose()?;
+    let mut names = vec![None];
+    let mut tables = vec![main];
+    for (name, v) in views.iter().flat_map(|v| v.entries()) {
+        names.push(Some(name));
+        tables.push(v.table(camera::CAMERA_KEYS)?);
+    }
+    match names.iter().position(|n| *n == view) {
+        Some(i) => Ok((tables, i)),
+        None => {
+            let name = view.unwrap_or_default();
+            let names: Vec<String> = views.iter().flat_map(|v| v.entries()).map(|(k, _)| format!("\"{k}\"")).collect();
+            let known =
+                if names.is_empty() { "it has none".to_string() } else { format!("it has {}", names.join(", ")) };
+            Err(doc.error(0, "views", format!("no view named \"{name}\" ([views.{name}]); {known}")))
+        }
+    }
 }
 
 const SPACETIMES: &[(&str, &[&str])] =
