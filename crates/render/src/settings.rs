@@ -22,7 +22,7 @@ pub enum IntegratorKind {
 pub struct PhotonSettings {
     /// Photons traced per iteration; `None`: one per pixel.
     pub per_iteration: Option<u64>,
-    /// Initial gather radius in scene units; `None`: 1 % of the diagonal of the scene's bounds.
+    /// Initial gather radius in scene units; `None`: 1 % of the diagonal of the bounds of the region a pixel first sees.
     pub radius: Option<f64>,
 }
 

@@ -1,7 +1,8 @@
 //! Photons leaving the area lights of both regions, with the power they carry.
 //!
-//! A photon starts at a point chosen uniformly by world area on an emitter, itself chosen by
-//! power (first the region, then the light by the [`World`]'s CDF), and leaves in a
+//! A photon starts at a point chosen uniformly by world area on an emitter, itself chosen first
+//! by region (see [`RegionSplit`]), then by power within the region (the [`World`]'s CDF), and
+//! leaves in a
 //! cosine-distributed direction about the emitter's normal in the static observer's local frame.
 //! Its power is the emitted flux over the density of that choice (pbrt-v3 §16.2.4):
 //! `Φ = Le cos θ / (p_light · p_A · p_ω) = Le · π · A · s / p_light`, where the area density is
@@ -28,16 +29,44 @@ pub(super) struct Photon {
     pub power: Rgb,
 }
 
-/// Samples a photon from the lights; `None` when the scene has no emitter of finite area.
-pub(super) fn emit(world: &World, propagator: &Propagator, rng: &mut Rng) -> Option<Photon> {
-    let (upper, lower) = (world.light_power(Region::Upper), world.light_power(Region::Lower));
-    let total = upper + lower;
-    if !(total > 0.0) {
-        return None;
+/// Probabilities of starting a photon in the upper and the lower region.
+///
+/// Photons mostly stay in the region they start in (crossing needs a throat), and are wasted
+/// where no camera path looks; by power alone, a sun in one region would starve a lamp-lit room
+/// in the other that fills the view. So half the photons are shared by power and half by the
+/// regions' shares of visible points, among the regions with emitters. Any split that gives every
+/// lit region a nonzero probability is unbiased: the photon's power is divided by it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct RegionSplit {
+    upper: f64,
+}
+
+impl RegionSplit {
+    /// The split for `visible` visible points in (upper, lower); `None` without emitters.
+    pub fn new(world: &World, visible: [usize; 2]) -> Option<Self> {
+        let power = [world.light_power(Region::Upper), world.light_power(Region::Lower)];
+        let total = power[0] + power[1];
+        if !(total > 0.0) {
+            return None;
+        }
+        let lit_visible = |k: usize| if power[k] > 0.0 { visible[k] as f64 } else { 0.0 };
+        let seen = lit_visible(0) + lit_visible(1);
+        let by_view = if seen > 0.0 { lit_visible(0) / seen } else { power[0] / total };
+        Some(Self { upper: 0.5 * (power[0] / total + by_view) })
     }
-    let u_region = rng.next_f64() * total;
-    let (region, p_region) =
-        if u_region < upper { (Region::Upper, upper / total) } else { (Region::Lower, lower / total) };
+
+    fn choose(&self, u: f64) -> (Region, f64) {
+        if u < self.upper {
+            (Region::Upper, self.upper)
+        } else {
+            (Region::Lower, 1.0 - self.upper)
+        }
+    }
+}
+
+/// Samples a photon from the lights.
+pub(super) fn emit(world: &World, propagator: &Propagator, split: RegionSplit, rng: &mut Rng) -> Option<Photon> {
+    let (region, p_region) = split.choose(rng.next_f64());
     let choice = world.choose_light(region, rng.next_f64())?;
     let light = world.object(region, choice.object);
     let emission = light.emission?;
@@ -58,4 +87,33 @@ pub(super) fn emit(world: &World, propagator: &Propagator, rng: &mut Rng) -> Opt
         direction,
         power: emission.radiance * scale as f32,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::Material;
+    use crate::shape::Shape;
+    use crate::sky::Sky;
+    use crate::texture::Texture;
+    use crate::transform::Transform;
+    use crate::world::{Emission, Object};
+
+    #[test]
+    fn regions_share_photons_by_power_and_by_view() {
+        let lamp = |r: f32| Object {
+            shape: Shape::sphere(Vec3::ZERO, 1.0, &Transform::identity()).unwrap(),
+            material: 0,
+            emission: Some(Emission { radiance: Rgb::splat(r), two_sided: false }),
+        };
+        let black = || Sky::Constant(Rgb::ZERO);
+        let materials = vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::ONE) }];
+        let world = World::new(materials.clone(), (vec![lamp(3.0)], black()), (vec![lamp(1.0)], black()));
+        // Power ¾ : ¼; visible points 1 : 3.
+        let split = RegionSplit::new(&world, [10, 30]).unwrap();
+        assert!((split.upper - 0.5).abs() < 1e-12);
+        // Visible points where there is no light do not count: by power alone then.
+        let dark_lower = World::new(materials, (vec![lamp(3.0)], black()), (Vec::new(), black()));
+        assert_eq!(RegionSplit::new(&dark_lower, [0, 30]).unwrap().choose(0.999), (Region::Upper, 1.0));
+    }
 }

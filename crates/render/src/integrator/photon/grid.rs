@@ -46,6 +46,11 @@ impl Grid {
         grid
     }
 
+    /// Number of spheres in the grid.
+    pub fn spheres(&self) -> usize {
+        self.starts.len() - 1
+    }
+
     /// The indices of the spheres that may contain `p` (a superset: check the distance).
     pub fn candidates(&self, p: Vec3) -> &[u32] {
         let inside = (0..3).all(|k| p[k] >= self.bounds.min[k] && p[k] <= self.bounds.max[k]);

@@ -31,6 +31,7 @@ use crate::renderer::{stratified, RenderStats};
 use crate::sampling::Rng;
 use crate::scene::Scene;
 use crate::world::World;
+use emit::RegionSplit;
 use grid::{Grid, Sphere};
 use pixel::PixelEstimate;
 use rayon::prelude::*;
@@ -44,7 +45,7 @@ use visible::{CameraPass, CameraSample, VisiblePoint};
 const CHUNK: u64 = 1024;
 /// Mixed into the seed of photon streams, so that they differ from the camera streams.
 const PHOTON_STREAMS: u64 = 0x7068_6f74_6f6e_7321;
-/// Default initial radius as a fraction of the largest region's bounding-box diagonal.
+/// Default initial radius as a fraction of the diagonal of a region's bounding box.
 const DEFAULT_RADIUS_FRACTION: f64 = 0.01;
 
 /// Whether photons can be traced forwards in `spacetime` (see the module documentation).
@@ -69,8 +70,8 @@ pub fn render(
     let settings = &scene.settings;
     let pixel_count = settings.width as usize * settings.height as usize;
     let photons = settings.photon.per_iteration.unwrap_or(pixel_count as u64);
-    let radius = settings.photon.radius.unwrap_or_else(|| default_radius(&scene.world));
-    let mut pixels = vec![PixelEstimate::new(radius); pixel_count];
+    let start_radius = |region| settings.photon.radius.unwrap_or_else(|| default_radius(&scene.world, region));
+    let mut pixels = vec![PixelEstimate::new(); pixel_count];
     let camera = CameraPass {
         world: &scene.world,
         propagator,
@@ -85,7 +86,11 @@ pub fn render(
         }
         let (samples, camera_stats) = camera_pass(scene, &camera, iteration);
         let visible: Vec<Option<VisiblePoint>> = samples.iter().map(|(s, _)| s.visible).collect();
-        let radii: Vec<f64> = pixels.iter().map(PixelEstimate::radius).collect();
+        let radii: Vec<f64> = pixels
+            .iter_mut()
+            .zip(&visible)
+            .map(|(pixel, vp)| vp.as_ref().map_or(0.0, |vp| pixel.radius_or_start(start_radius(vp.region))))
+            .collect();
         let pass = PhotonPass {
             world: &scene.world,
             propagator,
@@ -95,7 +100,9 @@ pub fn render(
             visible: &visible,
             radii: &radii,
         };
-        let Some((flux, found, photon_stats)) = photon_pass(&pass, settings.seed, iteration, photons, cancel) else {
+        let split = RegionSplit::new(&scene.world, [pass.upper.spheres(), pass.lower.spheres()]);
+        let Some((flux, found, photon_stats)) = photon_pass(&pass, split, (settings.seed, iteration), photons, cancel)
+        else {
             break;
         };
         for (i, pixel) in pixels.iter_mut().enumerate() {
@@ -125,20 +132,21 @@ pub fn render(
     (film, stats)
 }
 
-/// 1 % of the diagonal of the larger region's bounds (1 in a scene without finite objects).
-fn default_radius(world: &World) -> f64 {
-    let diagonal = [Region::Upper, Region::Lower]
+/// 1 % of the diagonal of the bounds of `region`'s objects (of the other region's if it has
+/// none, 1 in a scene without finite objects): a wormhole's room and the outer space on its
+/// other side may differ in size a hundredfold.
+fn default_radius(world: &World, region: Region) -> f64 {
+    let other = match region {
+        Region::Upper => Region::Lower,
+        Region::Lower => Region::Upper,
+    };
+    [region, other]
         .iter()
         .map(|&r| world.bounds(r))
         .filter(|b| !b.is_empty())
         .map(|b| b.diagonal().length())
-        .filter(|d| d.is_finite())
-        .fold(0.0, f64::max);
-    if diagonal > 0.0 {
-        DEFAULT_RADIUS_FRACTION * diagonal
-    } else {
-        1.0
-    }
+        .find(|d| d.is_finite() && *d > 0.0)
+        .map_or(1.0, |d| DEFAULT_RADIUS_FRACTION * d)
 }
 
 /// One camera path per pixel, row-major, with its filter weight.
@@ -190,8 +198,8 @@ fn grid(visible: &[Option<VisiblePoint>], radii: &[f64], region: Region) -> Grid
 /// Per-pixel flux sums and photon counts of one iteration's photons; `None` if cancelled.
 fn photon_pass(
     pass: &PhotonPass<'_>,
-    seed: u64,
-    iteration: u32,
+    split: Option<RegionSplit>,
+    (seed, iteration): (u64, u32),
     photons: u64,
     cancel: &AtomicBool,
 ) -> Option<(Vec<[f64; 3]>, Vec<u64>, PathStats)> {
@@ -203,8 +211,9 @@ fn photon_pass(
             }
             let mut rng = Rng::for_sample(seed ^ PHOTON_STREAMS, chunk, u64::from(iteration));
             let (mut deposits, mut stats) = (Vec::new(), PathStats::default());
+            let Some(split) = split else { return Some((deposits, stats)) };
             for _ in chunk * CHUNK..((chunk + 1) * CHUNK).min(photons) {
-                if let Some(photon) = emit::emit(pass.world, pass.propagator, &mut rng) {
+                if let Some(photon) = emit::emit(pass.world, pass.propagator, split, &mut rng) {
                     pass.trace(photon, &mut rng, &mut stats, &mut deposits);
                 }
             }

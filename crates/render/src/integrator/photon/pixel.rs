@@ -15,7 +15,8 @@ const ALPHA: f64 = 2.0 / 3.0;
 
 #[derive(Clone, Copy, Debug)]
 pub(super) struct PixelEstimate {
-    radius: f64,
+    /// Set when the pixel first has a visible point.
+    radius: Option<f64>,
     /// Photons kept, `N`.
     kept: f64,
     /// Accumulated flux `τ` (camera throughput included).
@@ -27,12 +28,13 @@ pub(super) struct PixelEstimate {
 }
 
 impl PixelEstimate {
-    pub fn new(radius: f64) -> Self {
-        Self { radius, kept: 0.0, tau: [0.0; 3], emitted: [0.0; 3], weight: 0.0 }
+    pub fn new() -> Self {
+        Self { radius: None, kept: 0.0, tau: [0.0; 3], emitted: [0.0; 3], weight: 0.0 }
     }
 
-    pub fn radius(&self) -> f64 {
-        self.radius
+    /// The gather radius, `start` if the pixel had none yet.
+    pub fn radius_or_start(&mut self, start: f64) -> f64 {
+        *self.radius.get_or_insert(start)
     }
 
     /// Adds a finished iteration: the direct radiance `emitted` (filter weight applied), the
@@ -42,17 +44,16 @@ impl PixelEstimate {
             *e += f64::from(c);
         }
         self.weight += weight;
-        if found == 0 {
-            return;
-        }
+        // Photons are found only within a radius, so a pixel with none found none.
+        let Some(old) = self.radius.filter(|_| found > 0) else { return };
         let m = found as f64;
         let kept = self.kept + ALPHA * m;
-        let radius = self.radius * (kept / (self.kept + m)).sqrt();
-        let shrink = (radius / self.radius).powi(2);
+        let radius = old * (kept / (self.kept + m)).sqrt();
+        let shrink = (radius / old).powi(2);
         for (t, f) in self.tau.iter_mut().zip(flux) {
             *t = (*t + f) * shrink;
         }
-        (self.kept, self.radius) = (kept, radius);
+        (self.kept, self.radius) = (kept, Some(radius));
     }
 
     /// The pixel's radiance after the finished iterations with `photons` photons each:
@@ -62,9 +63,11 @@ impl PixelEstimate {
         if self.weight == 0.0 {
             return None;
         }
-        let area = PI * self.radius * self.radius;
-        let [r, g, b] =
-            std::array::from_fn(|k| (self.emitted[k] + self.tau[k] / (photons as f64 * area)) / self.weight);
+        let gathered = |k: usize| match self.radius {
+            Some(r) => self.tau[k] / (photons as f64 * PI * r * r),
+            None => 0.0,
+        };
+        let [r, g, b] = std::array::from_fn(|k| (self.emitted[k] + gathered(k)) / self.weight);
         Some(Rgb::new(r as f32, g as f32, b as f32))
     }
 }
@@ -79,10 +82,10 @@ mod tests {
         // Each iteration scatters 4000 photons of flux 1 uniformly over the square [−1, 1]²:
         // irradiance 4000 / 4 per unit area and iteration, i.e. 1/4 per photon and unit area.
         let (photons, iterations) = (4000u64, 400);
-        let mut pixel = PixelEstimate::new(0.2);
+        let mut pixel = PixelEstimate::new();
         let mut rng = Rng::new(9);
         for _ in 0..iterations {
-            let r2 = pixel.radius() * pixel.radius();
+            let r2 = pixel.radius_or_start(0.2).powi(2);
             let found = (0..photons)
                 .filter(|_| {
                     let [x, y] = rng.next_2d().map(|u| 2.0 * u - 1.0);
@@ -91,10 +94,11 @@ mod tests {
                 .count() as u64;
             pixel.add_iteration(Rgb::splat(0.5), 1.0, [found as f64; 3], found);
         }
-        assert!(pixel.radius() < 0.1, "radius {} must shrink", pixel.radius());
+        let radius = pixel.radius_or_start(0.2);
+        assert!(radius < 0.1, "radius {radius} must shrink");
         let l = pixel.radiance(photons).unwrap();
         // 0.5 emitted + 0.25; the kept photon count is ~ 10⁴, so the relative error is ~1 %.
         assert!((l.x - 0.75).abs() < 0.25 * 0.04, "radiance {l}");
-        assert!(PixelEstimate::new(1.0).radiance(10).is_none());
+        assert!(PixelEstimate::new().radiance(10).is_none());
     }
 }
