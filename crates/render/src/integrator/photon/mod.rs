@@ -69,67 +69,114 @@ pub fn render(
     let start = Instant::now();
     let settings = &scene.settings;
     let pixel_count = settings.width as usize * settings.height as usize;
-    let photons = settings.photon.per_iteration.unwrap_or(pixel_count as u64);
     let start_radius = |region| settings.photon.radius.unwrap_or_else(|| default_radius(&scene.world, region));
-    let mut pixels = vec![PixelEstimate::new(); pixel_count];
-    let camera = CameraPass {
-        world: &scene.world,
-        propagator,
-        max_depth: settings.max_depth,
-        background: background::present(&scene.world),
+    let sppm = Sppm {
+        scene,
+        camera: CameraPass {
+            world: &scene.world,
+            propagator,
+            max_depth: settings.max_depth,
+            background: background::present(&scene.world),
+        },
+        photons: settings.photon.per_iteration.unwrap_or(pixel_count as u64),
+        start_radius: [start_radius(Region::Upper), start_radius(Region::Lower)],
     };
-    let mut stats = PathStats::default();
-    let mut done = 0u32;
+    let mut pixels = vec![PixelEstimate::new(); pixel_count];
+    let (mut totals, mut done) = (Totals::default(), 0u32);
     for iteration in 0..settings.spp {
         if cancel.load(Ordering::Relaxed) {
             break;
         }
-        let (samples, camera_stats) = camera_pass(scene, &camera, iteration);
-        let visible: Vec<Option<VisiblePoint>> = samples.iter().map(|(s, _)| s.visible).collect();
-        let radii: Vec<f64> = pixels
-            .iter_mut()
-            .zip(&visible)
-            .map(|(pixel, vp)| vp.as_ref().map_or(0.0, |vp| pixel.radius_or_start(start_radius(vp.region))))
-            .collect();
-        let pass = PhotonPass {
-            world: &scene.world,
-            propagator,
-            max_depth: settings.max_depth,
-            upper: grid(&visible, &radii, Region::Upper),
-            lower: grid(&visible, &radii, Region::Lower),
-            visible: &visible,
-            radii: &radii,
-        };
-        let split = RegionSplit::new(&scene.world, [pass.upper.spheres(), pass.lower.spheres()]);
-        let Some((flux, found, photon_stats)) = photon_pass(&pass, split, (settings.seed, iteration), photons, cancel)
-        else {
-            break;
-        };
-        for (i, pixel) in pixels.iter_mut().enumerate() {
-            let (sample, weight) = &samples[i];
-            pixel.add_iteration(sample.emitted, *weight, flux[i], found[i]);
-        }
-        stats += camera_stats;
-        stats += photon_stats;
+        let Some(t) = sppm.iteration(&mut pixels, iteration, cancel) else { break };
+        totals.paths += t.paths;
+        totals.dropped += t.dropped;
         done += 1;
         progress(u64::from(done), u64::from(settings.spp));
     }
-    let mut film = Film::new(settings.width, settings.height);
-    for (i, pixel) in pixels.iter().enumerate() {
-        if let Some(l) = pixel.radiance(photons) {
-            let (x, y) = ((i % settings.width as usize) as u32, (i / settings.width as usize) as u32);
-            film.add_sample(x, y, l, 1.0);
-        }
-    }
+    let film = sppm.film(&pixels);
     let stats = RenderStats {
-        paths: stats,
+        paths: totals.paths,
         samples: u64::from(done) * pixel_count as u64,
-        nan_samples: film.nan_samples(),
+        nan_samples: film.nan_samples() + totals.dropped,
         seconds: start.elapsed().as_secs_f64(),
         tiles_done: u64::from(done),
         tiles_total: u64::from(settings.spp),
     };
     (film, stats)
+}
+
+/// What iterations counted.
+#[derive(Default)]
+struct Totals {
+    paths: PathStats,
+    /// Camera samples and photon deposits dropped for being NaN or infinite.
+    dropped: u64,
+}
+
+/// One render's fixed parts.
+struct Sppm<'a> {
+    scene: &'a Scene,
+    camera: CameraPass<'a>,
+    photons: u64,
+    /// Initial radius of pixels whose first visible point is in the upper, the lower region.
+    start_radius: [f64; 2],
+}
+
+impl Sppm<'_> {
+    /// Runs one iteration into `pixels`; `None` (and `pixels` untouched) if cancelled.
+    fn iteration(&self, pixels: &mut [PixelEstimate], iteration: u32, cancel: &AtomicBool) -> Option<Totals> {
+        let (samples, camera_stats) = camera_pass(self.scene, &self.camera, iteration);
+        let visible: Vec<Option<VisiblePoint>> = samples.iter().map(|(s, _)| s.visible).collect();
+        let radii: Vec<f64> = pixels
+            .iter()
+            .zip(&visible)
+            .map(|(pixel, vp)| vp.as_ref().map_or(0.0, |vp| pixel.radius().unwrap_or(self.start(vp.region))))
+            .collect();
+        let pass = PhotonPass {
+            world: &self.scene.world,
+            propagator: self.camera.propagator,
+            max_depth: self.scene.settings.max_depth,
+            upper: grid(&visible, &radii, Region::Upper),
+            lower: grid(&visible, &radii, Region::Lower),
+            visible: &visible,
+            radii: &radii,
+        };
+        let split = RegionSplit::new(&self.scene.world, [pass.upper.spheres(), pass.lower.spheres()]);
+        let seed = (self.scene.settings.seed, iteration);
+        let Gathered { flux, found, paths: photon_stats, mut dropped } =
+            photon_pass(&pass, split, seed, self.photons, cancel)?;
+        for ((pixel, (sample, weight)), (&radius, (flux, found))) in
+            pixels.iter_mut().zip(&samples).zip(radii.iter().zip(flux.into_iter().zip(found)))
+        {
+            // Non-finite radiance would poison the pixel's sums for good; the path tracer's
+            // film drops such samples too.
+            let emitted = if sample.emitted.is_finite() { sample.emitted } else { Rgb::ZERO };
+            dropped += u64::from(!sample.emitted.is_finite());
+            pixel.add_iteration(emitted, *weight, (radius, flux), found);
+        }
+        let mut paths = camera_stats;
+        paths += photon_stats;
+        Some(Totals { paths, dropped })
+    }
+
+    fn start(&self, region: Region) -> f64 {
+        match region {
+            Region::Upper => self.start_radius[0],
+            Region::Lower => self.start_radius[1],
+        }
+    }
+
+    /// The pixels' estimates as a film, one sample of weight 1 each.
+    fn film(&self, pixels: &[PixelEstimate]) -> Film {
+        let width = self.scene.settings.width;
+        let mut film = Film::new(width, self.scene.settings.height);
+        for (i, pixel) in pixels.iter().enumerate() {
+            if let Some(l) = pixel.radiance(self.photons) {
+                film.add_sample(i as u32 % width, i as u32 / width, l, 1.0);
+            }
+        }
+        film
+    }
 }
 
 /// 1 % of the diagonal of the bounds of `region`'s objects (of the other region's if it has
@@ -195,14 +242,24 @@ fn grid(visible: &[Option<VisiblePoint>], radii: &[f64], region: Region) -> Grid
     Grid::build(&spheres)
 }
 
-/// Per-pixel flux sums and photon counts of one iteration's photons; `None` if cancelled.
+/// What one iteration's photons left.
+struct Gathered {
+    /// Per pixel: the flux sum and the number of photons found.
+    flux: Vec<[f64; 3]>,
+    found: Vec<u64>,
+    paths: PathStats,
+    /// Non-finite deposits, dropped.
+    dropped: u64,
+}
+
+/// Gathers one iteration's photons, chunk by chunk in chunk order; `None` if cancelled.
 fn photon_pass(
     pass: &PhotonPass<'_>,
     split: Option<RegionSplit>,
     (seed, iteration): (u64, u32),
     photons: u64,
     cancel: &AtomicBool,
-) -> Option<(Vec<[f64; 3]>, Vec<u64>, PathStats)> {
+) -> Option<Gathered> {
     let chunks: Vec<Option<(Vec<Deposit>, PathStats)>> = (0..photons.div_ceil(CHUNK))
         .into_par_iter()
         .map(|chunk| {
@@ -223,10 +280,15 @@ fn photon_pass(
     let mut flux = vec![[0.0; 3]; pass.visible.len()];
     let mut found = vec![0; pass.visible.len()];
     let mut stats = PathStats::default();
+    let mut dropped = 0;
     for chunk in chunks {
         let (deposits, s) = chunk?;
         for d in deposits {
             let i = d.pixel as usize;
+            if !d.flux.is_finite() {
+                dropped += 1;
+                continue;
+            }
             for (f, c) in flux[i].iter_mut().zip(d.flux.to_array()) {
                 *f += f64::from(c);
             }
@@ -234,5 +296,5 @@ fn photon_pass(
         }
         stats += s;
     }
-    Some((flux, found, stats))
+    Some(Gathered { flux, found, paths: stats, dropped })
 }

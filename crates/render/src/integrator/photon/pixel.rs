@@ -32,20 +32,23 @@ impl PixelEstimate {
         Self { radius: None, kept: 0.0, tau: [0.0; 3], emitted: [0.0; 3], weight: 0.0 }
     }
 
-    /// The gather radius, `start` if the pixel had none yet.
-    pub fn radius_or_start(&mut self, start: f64) -> f64 {
-        *self.radius.get_or_insert(start)
+    /// The gather radius; `None` before the pixel's first visible point.
+    pub fn radius(&self) -> Option<f64> {
+        self.radius
     }
 
     /// Adds a finished iteration: the direct radiance `emitted` (filter weight applied), the
-    /// filter weight `weight`, and the flux sum `flux` of the `found` photons in the radius.
-    pub fn add_iteration(&mut self, emitted: Rgb, weight: f64, flux: [f64; 3], found: u64) {
+    /// filter weight `weight`, and the flux sum `flux` of the `found` photons within `radius`
+    /// (the pixel's radius, or its initial radius at its first visible point).
+    pub fn add_iteration(&mut self, emitted: Rgb, weight: f64, (radius, flux): (f64, [f64; 3]), found: u64) {
         for (e, c) in self.emitted.iter_mut().zip(emitted.to_array()) {
             *e += f64::from(c);
         }
         self.weight += weight;
-        // Photons are found only within a radius, so a pixel with none found none.
-        let Some(old) = self.radius.filter(|_| found > 0) else { return };
+        if found == 0 {
+            return;
+        }
+        let old = *self.radius.get_or_insert(radius);
         let m = found as f64;
         let kept = self.kept + ALPHA * m;
         let radius = old * (kept / (self.kept + m)).sqrt();
@@ -85,16 +88,16 @@ mod tests {
         let mut pixel = PixelEstimate::new();
         let mut rng = Rng::new(9);
         for _ in 0..iterations {
-            let r2 = pixel.radius_or_start(0.2).powi(2);
+            let radius = pixel.radius().unwrap_or(0.2);
             let found = (0..photons)
                 .filter(|_| {
                     let [x, y] = rng.next_2d().map(|u| 2.0 * u - 1.0);
-                    x * x + y * y < r2
+                    x * x + y * y < radius * radius
                 })
                 .count() as u64;
-            pixel.add_iteration(Rgb::splat(0.5), 1.0, [found as f64; 3], found);
+            pixel.add_iteration(Rgb::splat(0.5), 1.0, (radius, [found as f64; 3]), found);
         }
-        let radius = pixel.radius_or_start(0.2);
+        let radius = pixel.radius().unwrap();
         assert!(radius < 0.1, "radius {radius} must shrink");
         let l = pixel.radiance(photons).unwrap();
         // 0.5 emitted + 0.25; the kept photon count is ~ 10⁴, so the relative error is ~1 %.
