@@ -5,17 +5,20 @@
 //! leaves in a
 //! cosine-distributed direction about the emitter's normal in the static observer's local frame.
 //! Its power is the emitted flux over the density of that choice (pbrt-v3 §16.2.4):
-//! `Φ = Le cos θ / (p_light · p_A · p_ω) = Le · π · A · s / p_light`, where the area density is
-//! per proper area: `p_A = 1 / (A · s)` with `s` the proper area per world area at the point.
+//! `Φ = Le |cos θ| / (p_light · p_A · p_ω)` (`= Le · π · A · s / p_light` for cosine-distributed
+//! directions), where the area density is per proper area: `p_A = 1 / (A · s)` with `s` the
+//! proper area per world area at the point.
+//!
+//! [`aim`]: super::aim
 
 use super::super::path::leave;
+use super::aim::{self, Target};
 use crate::color::Rgb;
-use crate::geometry::{Frame, Vec3};
+use crate::geometry::Vec3;
 use crate::propagator::Propagator;
-use crate::sampling::{cosine_hemisphere, Rng};
+use crate::sampling::Rng;
 use crate::world::World;
 use spacetime::Region;
-use std::f64::consts::PI;
 
 /// A photon about to be traced.
 #[derive(Clone, Copy, Debug)]
@@ -64,27 +67,35 @@ impl RegionSplit {
     }
 }
 
-/// Samples a photon from the lights.
-pub(super) fn emit(world: &World, propagator: &Propagator, split: RegionSplit, rng: &mut Rng) -> Option<Photon> {
+/// Samples a photon from the lights, aimed at the receivers of its region (`targets`, upper
+/// and lower; see [`aim`]); `None` when it leaves the back of a one-sided emitter.
+///
+/// [`aim`]: super::aim
+pub(super) fn emit(
+    world: &World,
+    propagator: &Propagator,
+    (split, targets): (RegionSplit, &[Option<Target>; 2]),
+    rng: &mut Rng,
+) -> Option<Photon> {
     let (region, p_region) = split.choose(rng.next_f64());
     let choice = world.choose_light(region, rng.next_f64())?;
     let light = world.object(region, choice.object);
     let emission = light.emission?;
     let (point, normal) = light.shape.sample_area(rng.next_2d());
-    let (u_side, u_dir) = (rng.next_f64(), rng.next_2d());
     let local_normal = propagator.local_normal(region, point, normal);
-    // A two-sided emitter picks a side with probability ½, doubling the photon's power.
-    let (side, sides) = match (emission.two_sided, u_side < 0.5) {
-        (false, _) => (1.0, 1.0),
-        (true, front) => (if front { 1.0 } else { -1.0 }, 2.0),
-    };
-    let direction = Frame::from_normal(side * local_normal).to_world(cosine_hemisphere(u_dir));
+    let target = targets[usize::from(region == Region::Lower)];
+    let numbers = (rng.next_f64(), rng.next_f64(), rng.next_2d());
+    let aimed = aim::sample(point, local_normal, emission.two_sided, target, numbers);
+    let cos = aimed.direction.dot(local_normal);
+    if !(emission.two_sided || cos > 0.0) || !(aimed.pdf > 0.0) {
+        return None;
+    }
     let area = light.shape.area() * propagator.area_scale(point, normal);
-    let scale = PI * area * sides / (p_region * choice.probability);
+    let scale = cos.abs() * area / (aimed.pdf * p_region * choice.probability);
     Some(Photon {
         region,
-        origin: leave(point, normal, local_normal, direction),
-        direction,
+        origin: leave(point, normal, local_normal, aimed.direction),
+        direction: aimed.direction,
         power: emission.radiance * scale as f32,
     })
 }

@@ -2,7 +2,7 @@
 //! curved spacetime.
 //!
 //! Every iteration traces one camera path per pixel to its visible point (see [`visible`]),
-//! then a fixed number of photons from the lights (see [`emit`], [`trace`]), gathered by the
+//! then a fixed number of photons from the lights (see [`emit`], [`aim`], [`trace`]), gathered by the
 //! visible points within each pixel's radius, which shrinks from iteration to iteration (see
 //! [`pixel`]). Skies and infinite emitters, which photons cannot start from, are gathered by
 //! paths continued from the visible points (see [`background`]). Lights that camera paths rarely hit by chance — a lamp in a room seen through a
@@ -16,6 +16,7 @@
 //! Photons follow geodesics forwards, which needs a spacetime whose light rays can be
 //! reversed: static and time-symmetric (Minkowski, Schwarzschild, Ellis). Kerr is not.
 
+mod aim;
 mod background;
 mod emit;
 mod grid;
@@ -79,6 +80,7 @@ pub fn render(
             background: background::present(&scene.world),
         },
         photons: settings.photon.per_iteration.unwrap_or(pixel_count as u64),
+        targets: aim::targets(&scene.world, &scene.spacetime),
         start_radius: [start_radius(Region::Upper), start_radius(Region::Lower)],
     };
     let mut pixels = vec![PixelEstimate::new(); pixel_count];
@@ -118,6 +120,8 @@ struct Sppm<'a> {
     scene: &'a Scene,
     camera: CameraPass<'a>,
     photons: u64,
+    /// Where photons of the upper and the lower region are aimed.
+    targets: [Option<aim::Target>; 2],
     /// Initial radius of pixels whose first visible point is in the upper, the lower region.
     start_radius: [f64; 2],
 }
@@ -144,7 +148,7 @@ impl Sppm<'_> {
         let split = RegionSplit::new(&self.scene.world, [pass.upper.spheres(), pass.lower.spheres()]);
         let seed = (self.scene.settings.seed, iteration);
         let Gathered { flux, found, paths: photon_stats, mut dropped } =
-            photon_pass(&pass, split, seed, self.photons, cancel)?;
+            photon_pass(&pass, split.map(|s| (s, &self.targets)), seed, self.photons, cancel)?;
         for ((pixel, (sample, weight)), (&radius, (flux, found))) in
             pixels.iter_mut().zip(&samples).zip(radii.iter().zip(flux.into_iter().zip(found)))
         {
@@ -255,7 +259,7 @@ struct Gathered {
 /// Gathers one iteration's photons, chunk by chunk in chunk order; `None` if cancelled.
 fn photon_pass(
     pass: &PhotonPass<'_>,
-    split: Option<RegionSplit>,
+    emitters: Option<(RegionSplit, &[Option<aim::Target>; 2])>,
     (seed, iteration): (u64, u32),
     photons: u64,
     cancel: &AtomicBool,
@@ -268,9 +272,9 @@ fn photon_pass(
             }
             let mut rng = Rng::for_sample(seed ^ PHOTON_STREAMS, chunk, u64::from(iteration));
             let (mut deposits, mut stats) = (Vec::new(), PathStats::default());
-            let Some(split) = split else { return Some((deposits, stats)) };
+            let Some(emitters) = emitters else { return Some((deposits, stats)) };
             for _ in chunk * CHUNK..((chunk + 1) * CHUNK).min(photons) {
-                if let Some(photon) = emit::emit(pass.world, pass.propagator, split, &mut rng) {
+                if let Some(photon) = emit::emit(pass.world, pass.propagator, emitters, &mut rng) {
                     pass.trace(photon, &mut rng, &mut stats, &mut deposits);
                 }
             }
