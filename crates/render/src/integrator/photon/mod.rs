@@ -15,6 +15,10 @@
 //!
 //! Photons follow geodesics forwards, which needs a spacetime whose light rays can be
 //! reversed: static and time-symmetric (Minkowski, Schwarzschild, Ellis). Kerr is not.
+//!
+//! Statistics: `rays` counts every geodesic segment traced (camera, background and photon
+//! paths); the fates are those of the camera paths, which end at their visible points
+//! (counted as absorbed) unless they escape, are captured or fail first.
 
 mod aim;
 mod background;
