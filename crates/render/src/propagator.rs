@@ -16,7 +16,7 @@ use crate::geometry::{Ray, Vec3};
 use crate::settings::Intersection;
 use crate::shape::SurfaceHit;
 use crate::world::World;
-use spacetime::geodesic::connect::{connect, Connection};
+use spacetime::geodesic::connect::{connect, Connection, Way};
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
 use spacetime::geodesic::{HamiltonianStep, HamiltonianTracer, Integrator, State, TraceSettings};
 use spacetime::metric::KerrSchild;
@@ -131,12 +131,12 @@ impl Propagator {
             && matches!(self.intersection, Intersection::Chord)
     }
 
-    /// The light ray from world point `from` to world point `to` that sweeps the short way round
-    /// the hole (azimuth ≤ π), with its bundle density; `None` where [`Propagator::connects`] is
-    /// false or there is no such ray.
-    pub fn connect(&self, from: Vec3, to: Vec3) -> Option<Connection> {
+    /// The light ray from world point `from` to world point `to` that goes `way` round the hole,
+    /// with its bundle density; `None` where [`Propagator::connects`] is false or there is no
+    /// such ray.
+    pub fn connect(&self, from: Vec3, to: Vec3, way: Way) -> Option<Connection> {
         match self.spacetime {
-            Spacetime::Schwarzschild(m) if self.connects() => connect(&m, from.to_array(), to.to_array()),
+            Spacetime::Schwarzschild(m) if self.connects() => connect(&m, from.to_array(), to.to_array(), way),
             _ => None,
         }
     }

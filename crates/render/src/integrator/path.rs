@@ -20,6 +20,7 @@ use crate::propagator::{Arrival, Propagator, RayEnd};
 use crate::sampling::{power_heuristic, Rng};
 use crate::shape::offset_origin;
 use crate::world::World;
+use spacetime::geodesic::connect::Way;
 use spacetime::Region;
 
 /// Paths start surviving Russian roulette unconditionally for this many bounces.
@@ -39,7 +40,7 @@ enum LightSampling {
     None,
     /// Straight shadow rays (flat space).
     Straight,
-    /// Geodesic connections the short way round the hole (Schwarzschild).
+    /// Geodesic connections each way round the hole (Schwarzschild).
     Geodesic,
 }
 
@@ -184,12 +185,33 @@ impl<'a> PathIntegrator<'a> {
         }
     }
 
-    /// One light sample joined by its geodesic (Schwarzschild).
+    /// One light point joined by its geodesics, the short way round the hole and, at random, the
+    /// long way (Schwarzschild).
     fn geodesic_light(&self, at: &Arrival, shading: &Shading<'_>, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
-        let (u_choice, u_point) = (rng.next_f64(), rng.next_2d());
-        let Some(light) = geodesic_light::sample(self.world, self.propagator, at, u_choice, u_point) else {
+        let (u_choice, u_point, u_way) = (rng.next_f64(), rng.next_2d(), rng.next_f64());
+        let Some(point) = geodesic_light::sample_point(self.world, at, u_choice, u_point) else {
             return Rgb::ZERO;
         };
+        let mut sum = Rgb::ZERO;
+        for way in Way::BOTH {
+            if u_way >= geodesic_light::way_probability(way) {
+                continue;
+            }
+            if let Some(light) = point.join(self.propagator, at, way) {
+                sum += self.connected_light(at, shading, &light, stats);
+            }
+        }
+        sum
+    }
+
+    /// A joined light point's MIS-weighted contribution, if it is seen.
+    fn connected_light(
+        &self,
+        at: &Arrival,
+        shading: &Shading<'_>,
+        light: &geodesic_light::Candidate,
+        stats: &mut PathStats,
+    ) -> Rgb {
         let wi_local = shading.frame.to_local(light.wi);
         let f = shading.bsdf.f(shading.wo, wi_local) * wi_local.z.abs() as f32;
         if f == Rgb::ZERO {

@@ -20,8 +20,15 @@
 //! every `Δφ ∈ (0, π]` the radius `u(Δφ; ψ)` is strictly increasing in `ψ`: the ray that sweeps
 //! the short way round (`Δφ ≤ π`) is unique where it exists, and a bracketed Newton iteration on
 //! `ψ ∈ (0, π)` finds it. Rays that escape before `Δφ` bracket it from below, captured ones from
-//! above. Other rays from `x` to `y` (the long way round, `2π − Δφ`, and higher windings) are not
-//! found here.
+//! above.
+//!
+//! The long way round sweeps `2π − Δφ` in the plane's other sense. Such rays pass close to the
+//! photon sphere (`b` just above `3√3 M`), where `1 − 6Mu < 0` and `J` grows instead of turning:
+//! a point source in Schwarzschild has no radial caustic (its only caustics lie on the axis
+//! through the hole; Bozza 2002, strong deflection limit), so `J > 0` there too and the same
+//! bracketed iteration, on `ψ` below the critical angle, finds the unique long-way ray. A
+//! converged ray with `J ≤ 0` would contradict that and is rejected. Higher windings
+//! (`Δφ + 2πk`, `k ≥ 1`) are not found.
 //!
 //! Density: turning `ψ` by `dψ` moves the ray at `φ = Δφ` radially by `∂r/∂ψ = −J/u_y² · ds/dψ`,
 //! with `ds/dψ = u_x/(σ_x sin²ψ)`; turning the plane by `dχ` about the axis through the centre
@@ -52,7 +59,32 @@ const MIN_SIN_SWEEP: f64 = 1e-9;
 const MAX_ITERATIONS: u32 = 100;
 const MAX_STEPS: u32 = 10_000;
 
-/// The short-way ray from `x` to `y` and its density.
+/// Which of the two rays that go round the centre less than once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Way {
+    /// Sweeping `Δφ ≤ π`.
+    Short,
+    /// Sweeping `2π − Δφ ≥ π` the other way round.
+    Long,
+}
+
+impl Way {
+    pub const BOTH: [Way; 2] = [Way::Short, Way::Long];
+
+    /// The way a ray that swept `swept` radians about the centre went, if it went round less than
+    /// once.
+    pub fn of_sweep(swept: f64) -> Option<Way> {
+        if swept <= PI {
+            Some(Way::Short)
+        } else if swept < 2.0 * PI {
+            Some(Way::Long)
+        } else {
+            None
+        }
+    }
+}
+
+/// A ray from `x` to `y` and its density.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Connection {
     /// Unit direction the ray leaves `x` in, in the static frame at `x` (axes along the world's).
@@ -65,7 +97,7 @@ pub struct Connection {
     /// perpendicular to `end_tangent`, equation (3). A surface with world unit normal `n` has
     /// `dΩ_x/dA = |n · end_tangent| · solid_angle_per_area`.
     pub solid_angle_per_area: f64,
-    /// Azimuth swept from `x` to `y`, in `(0, π]`.
+    /// Azimuth swept from `x` to `y`: `Δφ ∈ (0, π]` the short way, `2π − Δφ` the long way.
     pub swept: f64,
 }
 
@@ -79,10 +111,10 @@ enum Shot {
     Reaches { u: f64, du: f64, jacobi: f64 },
 }
 
-/// The ray that leaves world point `x` and reaches world point `y` sweeping the short way round
-/// the centre (both outside the horizon), or `None` where there is none (it would be captured,
-/// or `y` lies on the line through the centre and `x`).
-pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3]) -> Option<Connection> {
+/// The ray that leaves world point `x` and reaches world point `y` going `way` round the centre
+/// (both outside the horizon), or `None` where there is none (it would be captured, `y` lies on
+/// the line through the centre and `x`, or, the long way, `x` lies inside the photon sphere).
+pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) -> Option<Connection> {
     let (rx, ry) = (norm3(&x), norm3(&y));
     let horizon = 2.0 * metric.mass;
     if !(rx > horizon && ry > horizon) {
@@ -93,12 +125,26 @@ pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3]) -> Option<Conne
     if sin < MIN_SIN_SWEEP {
         return None;
     }
-    let sweep = sin.atan2(cos);
+    let short = sin.atan2(cos);
     let e2 = normalize3(&std::array::from_fn(|i| yh[i] - cos * xh[i]));
     let (ux, uy) = (1.0 / rx, 1.0 / ry);
     let slope_scale = ux * (1.0 - 2.0 * metric.mass * ux).sqrt();
-    let mut psi = slope_scale.atan2(-first_guess(metric.mass, ux, uy, cos, sin));
-    let (mut lo, mut hi) = (0.0, PI);
+    let (e2, sweep, mut psi, mut hi) = match way {
+        Way::Short => (e2, short, slope_scale.atan2(-first_guess(metric.mass, ux, uy, cos, sin)), PI),
+        Way::Long => {
+            // Rays leaving inward at more than the critical angle `ψ_c` (impact parameter
+            // b = sin ψ/(u_x √(1 − 2Mu_x)) below 3√3 M) are captured. Inside the photon sphere
+            // the critical angle lies on the outward side instead.
+            if !(rx > 3.0 * metric.mass) {
+                return None;
+            }
+            let sin_critical = 3.0 * 3f64.sqrt() * metric.mass * slope_scale;
+            let sweep = 2.0 * PI - short;
+            let guess = long_guess(metric.mass, ux, uy, sweep, sin_critical);
+            (scale3(&e2, -1.0), sweep, guess, PI - sin_critical.asin())
+        }
+    };
+    let mut lo = 0.0;
     for _ in 0..MAX_ITERATIONS {
         let (s_psi, c_psi) = psi.sin_cos();
         let next = match shoot(metric, ux, -slope_scale * c_psi / s_psi, sweep)? {
@@ -167,7 +213,7 @@ impl Ends {
         let end_tangent = along(-self.du);
         let t_phi = self.uy / self.du.hypot(self.uy);
         // Equation (3).
-        let density = s_psi.powi(3) * stretch(self.ux) * self.uy.powi(3) / (self.ux * self.jacobi * s_sw * t_phi);
+        let density = s_psi.powi(3) * stretch(self.ux) * self.uy.powi(3) / (self.ux * self.jacobi * s_sw.abs() * t_phi);
         Some(Connection { start, end, end_tangent, solid_angle_per_area: density, swept: self.sweep })
     }
 }
@@ -190,6 +236,19 @@ fn first_guess(mass: f64, ux: f64, uy: f64, cos: f64, sin: f64) -> f64 {
     } else {
         (uy - ux * cos) / sin
     }
+}
+
+/// First guess for the long way: in the strong-deflection limit a ray with `b = b_c(1 + ε)` from
+/// infinity to infinity sweeps `−ln ε + ln(216(7 − 4√3))` (Bozza 2002, eq. 36 with π added),
+/// less the azimuth the critical ray sweeps between each end and infinity,
+/// `S(u) = 2[artanh √(2M(u + 1/6M)) − artanh √(1/3)]` (the critical orbit's integral, since
+/// `1/b_c² − u² + 2Mu³ = 2M(u − 1/3M)²(u + 1/6M)`). Solved for `ε`, then `sin ψ = sin ψ_c (1 + ε)`.
+fn long_guess(mass: f64, ux: f64, uy: f64, sweep: f64, sin_critical: f64) -> f64 {
+    let to_infinity = |u: f64| 2.0 * ((2.0 * mass * u + 1.0 / 3.0).sqrt().atanh() - (1.0f64 / 3.0).sqrt().atanh());
+    let ln_epsilon = (216.0 * (7.0 - 4.0 * 3f64.sqrt())).ln() - sweep - to_infinity(ux) - to_infinity(uy);
+    // An end inside the photon sphere has no such limit (NaN): start a little off critical.
+    let epsilon = if ln_epsilon.is_finite() { ln_epsilon.exp() } else { 0.05 };
+    PI - (sin_critical * (1.0 + epsilon)).min(1.0).asin()
 }
 
 /// Integrates (1) and (2) from `φ = 0` to `sweep` with Dormand–Prince 5(4); `None` if it does not
