@@ -32,8 +32,7 @@ use super::stats::PathStats;
 use crate::color::Rgb;
 use crate::geometry::Vec3;
 use crate::propagator::{Arrival, Propagator, RayEnd};
-use crate::world::Emission;
-use crate::world::World;
+use crate::world::{Emission, World};
 use spacetime::geodesic::connect::{Connection, Way};
 
 /// A traced connection counts as reaching the sampled point when it hits the light within this
@@ -140,8 +139,8 @@ impl Candidate {
 /// that reached the emitter of `arrival`: `None` where it never would (the ray wound round the
 /// hole, or the emitter is not sampled), so BSDF sampling's MIS weight is then 1.
 pub(super) fn emitter_pdf(world: &World, propagator: &Propagator, from: Vec3, arrival: &Arrival) -> Option<f64> {
-    // Each way round, the ray is unique (monotone shooting, see `connect`): a ray that swept
-    // less than once round is exactly the one `connect` finds its way for its end points.
+    // Each way round, the ray is unique (monotone shooting, see `connect`): a ray that went less
+    // than once round is exactly the one `connect` finds, that way round, between its ends.
     let way = Way::of_sweep(arrival.swept?)?;
     let choice = world.light_probability(arrival.region, arrival.object);
     if choice == 0.0 {
