@@ -84,7 +84,9 @@ fn interrupting_a_render_keeps_what_was_computed() {
     let out = temp("interrupted.png");
     let _ = std::fs::remove_file(&out);
     let child = nullpath()
-        .args(["render", "-o", out.to_str().unwrap(), "--width", "256", "--height", "256", "--spp", "4096", "--quiet"])
+        .args(["render", concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/cornell-box.toml"), "-o", out.to_str().unwrap()])
+        // Cheap samples, so that tiles finish soon after the interrupt.
+        .args(["--width", "256", "--height", "256", "--spp", "4096", "--quiet"])
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();

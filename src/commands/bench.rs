@@ -17,7 +17,8 @@ pub enum Workload {
     Room,
 }
 
-/// The room scene, bundled with the binary so the benchmark runs anywhere.
+/// The benchmark scenes, bundled with the binary so the benchmarks run anywhere.
+const CORNELL_SCENE: &str = include_str!("../../scenes/cornell-box.toml");
 const ROOM_SCENE: &str = include_str!("../../scenes/room-black-hole.toml");
 
 #[derive(Parser, Debug)]
@@ -78,7 +79,11 @@ pub fn run(args: &Args) -> Result<(), String> {
     }
     match args.workload {
         Workload::Geodesics => geodesics(args),
-        Workload::Cornell => scene_bench(args, "cornell", super::render::load_scene(None, None)?).map(|_| ()),
+        Workload::Cornell => {
+            let cornell = scene::parse(CORNELL_SCENE, "scenes/cornell-box.toml", std::path::Path::new("."))
+                .map_err(|e| e.to_string())?;
+            scene_bench(args, "cornell", cornell).map(|_| ())
+        }
         Workload::Room => {
             let curved = scene::parse(ROOM_SCENE, "scenes/room-black-hole.toml", std::path::Path::new("."))
                 .map_err(|e| e.to_string())?;

@@ -11,8 +11,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 /// The scene rendered when none is named.
-pub const DEFAULT_SCENE: &str = include_str!("../../scenes/cornell-box.toml");
-pub const DEFAULT_SCENE_NAME: &str = "<default scene: scenes/cornell-box.toml>";
+pub const DEFAULT_SCENE: &str = include_str!("../../scenes/room-black-hole.toml");
+pub const DEFAULT_SCENE_NAME: &str = "<default scene: scenes/room-black-hole.toml>";
 
 #[derive(Parser, Debug)]
 pub struct Args {

@@ -16,6 +16,7 @@ use crate::geometry::{Ray, Vec3};
 use crate::settings::Intersection;
 use crate::shape::SurfaceHit;
 use crate::world::World;
+use spacetime::geodesic::connect::{connect, Connection, Way};
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
 use spacetime::geodesic::{HamiltonianStep, HamiltonianTracer, Integrator, State, TraceSettings};
 use spacetime::metric::KerrSchild;
@@ -48,6 +49,9 @@ pub struct Arrival {
     /// Photon energy measured by the local observer at the hit, relative to the energy measured
     /// at the ray's start (1 in flat space).
     pub energy: f64,
+    /// Azimuth swept about the centre from the ray's start to the hit, where the in-plane tracer
+    /// follows the ray in its plane (`None` for straight and 4-D traced rays).
+    pub swept: Option<f64>,
 }
 
 /// How rays are propagated; built once per render.
@@ -119,6 +123,24 @@ impl Propagator {
         }
     }
 
+    /// Whether [`Propagator::connect`] can join points by geodesics here: Schwarzschild with mass,
+    /// traced by the chord method. (Kerr and the Ellis wormhole have no connection solver yet;
+    /// the poster's intersection test would not find the same rays.)
+    pub fn connects(&self) -> bool {
+        matches!(self.spacetime, Spacetime::Schwarzschild(m) if m.mass > 0.0)
+            && matches!(self.intersection, Intersection::Chord)
+    }
+
+    /// The light ray from world point `from` to world point `to` that goes `way` round the hole,
+    /// with its bundle density; `None` where [`Propagator::connects`] is false or there is no
+    /// such ray.
+    pub fn connect(&self, from: Vec3, to: Vec3, way: Way) -> Option<Connection> {
+        match self.spacetime {
+            Spacetime::Schwarzschild(m) if self.connects() => connect(&m, from.to_array(), to.to_array(), way),
+            _ => None,
+        }
+    }
+
     /// Unit normal in the local frame at `p` for a surface with world normal `n`: the normal is a
     /// covector (the gradient of the surface function), so its radial component scales by `κ`.
     pub fn local_normal(&self, region: Region, p: Vec3, n: Vec3) -> Vec3 {
@@ -165,7 +187,7 @@ impl Propagator {
         };
         let lapse = |p: Vec3| metric.u_of_world_radius(p.length()).map_or(1.0, |u| metric.lapse(u));
         let lapse0 = lapse(origin);
-        let mut arrival: Option<(ChordHit, Vec3, Region)> = None;
+        let mut arrival: Option<(ChordHit, Vec3, Region, Option<f64>)> = None;
         let mut last = origin;
         let t = trace_plane(metric, start, &self.trace, |step| {
             let region = step.region();
@@ -185,7 +207,7 @@ impl Propagator {
                         PlaneStep::Straight { .. } => hit.chord.dir,
                         PlaneStep::Curved { .. } => Vec3::from_array(step.point(metric, hit.theta).direction),
                     };
-                    arrival = Some((hit, direction, region));
+                    arrival = Some((hit, direction, region, step.azimuth(hit.theta)));
                     Visit::Stop
                 }
                 None => Visit::Continue,
@@ -193,10 +215,10 @@ impl Propagator {
         });
         match t.fate {
             Fate::Stopped => {
-                let Some((found, direction, region)) = arrival else { return RayEnd::Failed };
+                let Some((found, direction, region, swept)) = arrival else { return RayEnd::Failed };
                 let hit = world.surface(region, found.object, &found.chord, found.t);
                 let energy = lapse0 / lapse(hit.p);
-                RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy })
+                RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy, swept })
             }
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
                 let traversed = matches!(t.fate, Fate::Traversed { .. });
@@ -329,7 +351,8 @@ impl Propagator {
                 let (n, energy) = local.backward_direction(&state.p);
                 let hit = world.surface(region, found.object, &found.chord, found.t);
                 let direction = to_world * Vec3::from_array(n);
-                RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy })
+                let (object, distance) = (found.object, found.t);
+                RayEnd::Hit(Arrival { region, object, hit, direction, distance, energy, swept: None })
             }
             // A static observer at infinity measures the conserved `p_t` of the backward ray.
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
@@ -363,7 +386,7 @@ fn other(region: Region) -> Region {
 /// still be met on it. Its energy is then measured by static observers far away (`energy`).
 fn beyond(world: &World, region: Region, from: Vec3, direction: Vec3, traversed: bool, energy: f64) -> RayEnd {
     match straight(world, region, from, direction) {
-        RayEnd::Hit(a) => RayEnd::Hit(Arrival { energy, ..a }),
+        RayEnd::Hit(a) => RayEnd::Hit(Arrival { energy, swept: None, ..a }),
         _ => RayEnd::Escaped { region, direction, traversed, energy },
     }
 }
@@ -373,7 +396,7 @@ fn straight(world: &World, region: Region, origin: Vec3, direction: Vec3) -> Ray
     match world.intersect(region, &Ray::new(origin, direction, f64::INFINITY)) {
         Some((object, dist)) => {
             let hit = world.surface(region, object, &Ray::new(origin, direction, dist), dist);
-            RayEnd::Hit(Arrival { region, object, hit, direction, distance: dist, energy: 1.0 })
+            RayEnd::Hit(Arrival { region, object, hit, direction, distance: dist, energy: 1.0, swept: None })
         }
         None => RayEnd::Escaped { region, direction, traversed: false, energy: 1.0 },
     }

@@ -6,7 +6,8 @@ use crate::film::{Filter, ToneMap};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IntegratorKind {
     /// Unidirectional path tracing with next-event estimation and MIS wherever light can be
-    /// connected to exactly (flat space); BSDF sampling alone elsewhere.
+    /// connected to exactly (flat space by straight rays, Schwarzschild by geodesics); BSDF
+    /// sampling alone elsewhere (Kerr, the Ellis wormhole, the poster's intersection mode).
     Path,
     /// Path tracing that only finds lights by hitting them: the unbiased reference.
     BruteForce,

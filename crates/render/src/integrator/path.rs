@@ -5,11 +5,13 @@
 //! fourth power of the frequency shift between the observers at its ends (`I_ν/ν³` is invariant;
 //! integrated over frequency, `I ∝ ν⁴`), which accounts for gravitational red- and blueshift.
 //!
-//! In flat space, direct light is also sampled on the emitters and combined with BSDF sampling
-//! by multiple importance sampling (Veach 1997, power heuristic): a straight shadow ray is then
-//! exact. In curved space light travels on geodesics, so straight shadow rays would be wrong;
-//! there lights are found by BSDF sampling alone.
+//! Direct light is also sampled on the emitters and combined with BSDF sampling by multiple
+//! importance sampling (Veach 1997, power heuristic). In flat space the shadow ray is straight;
+//! in Schwarzschild spacetime it is the geodesic found by shooting ([`super::geodesic_light`]).
+//! Kerr and the Ellis wormhole have no connection solver yet: there lights are found by BSDF
+//! sampling alone.
 
+use super::geodesic_light;
 use super::stats::PathStats;
 use crate::color::Rgb;
 use crate::geometry::{Frame, Ray, Vec3};
@@ -18,6 +20,7 @@ use crate::propagator::{Arrival, Propagator, RayEnd};
 use crate::sampling::{power_heuristic, Rng};
 use crate::shape::offset_origin;
 use crate::world::World;
+use spacetime::geodesic::connect::Way;
 use spacetime::Region;
 
 /// Paths start surviving Russian roulette unconditionally for this many bounces.
@@ -27,8 +30,18 @@ pub struct PathIntegrator<'a> {
     world: &'a World,
     propagator: &'a Propagator,
     max_depth: u32,
-    /// Next-event estimation with MIS (flat space only).
-    next_event: bool,
+    light_sampling: LightSampling,
+}
+
+/// How direct light is sampled at a vertex, besides BSDF sampling.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum LightSampling {
+    /// Not at all: brute force, or a spacetime without a connection solver (Kerr, Ellis).
+    None,
+    /// Straight shadow rays (flat space).
+    Straight,
+    /// Geodesic connections each way round the hole (Schwarzschild).
+    Geodesic,
 }
 
 /// Where the previous bounce left from, for the MIS weight of an emitter hit by BSDF sampling.
@@ -36,12 +49,23 @@ pub struct PathIntegrator<'a> {
 struct Bounce {
     pdf: f64,
     specular: bool,
+    /// The surface point it left (before the offset that starts the next ray).
+    from: Vec3,
 }
 
 impl<'a> PathIntegrator<'a> {
     /// `brute_force` disables light sampling everywhere (the unbiased reference).
     pub fn new(world: &'a World, propagator: &'a Propagator, max_depth: u32, brute_force: bool) -> Self {
-        Self { world, propagator, max_depth, next_event: propagator.is_flat() && !brute_force }
+        let light_sampling = if brute_force {
+            LightSampling::None
+        } else if propagator.is_flat() {
+            LightSampling::Straight
+        } else if propagator.connects() {
+            LightSampling::Geodesic
+        } else {
+            LightSampling::None
+        };
+        Self { world, propagator, max_depth, light_sampling }
     }
 
     /// Radiance arriving at `origin` (in `region`) from the local-frame direction `direction`
@@ -53,7 +77,7 @@ impl<'a> PathIntegrator<'a> {
         // so a path through clear glass is never killed for having entered it (pbrt-v4 §13.4.4).
         let mut eta_scale = 1.0f64;
         let (mut region, mut origin, mut direction) = (region, origin, direction);
-        let mut bounce = Bounce { pdf: 0.0, specular: true };
+        let mut bounce = Bounce { pdf: 0.0, specular: true, from: origin };
         let mut depth = 0;
         loop {
             stats.rays += 1;
@@ -96,8 +120,9 @@ impl<'a> PathIntegrator<'a> {
             let ns = self.propagator.local_normal(arrival.region, hit.p, hit.ns);
             let frame = Frame::from_normal(ns);
             let wo = frame.to_local(-arrival.direction);
-            if self.next_event && !bsdf.is_delta() {
-                radiance += beta * self.direct_light(&arrival, &bsdf, &frame, wo, rng, stats);
+            if !bsdf.is_delta() {
+                let shading = Shading { bsdf: &bsdf, frame: &frame, wo, ng };
+                radiance += beta * self.direct_light(&arrival, &shading, rng, stats);
             }
             let Some(sample) = bsdf.sample(wo, rng.next_f64(), rng.next_2d()) else {
                 stats.fates.absorbed += 1;
@@ -119,7 +144,7 @@ impl<'a> PathIntegrator<'a> {
                 }
                 beta /= rr_beta as f32;
             }
-            bounce = Bounce { pdf: sample.pdf, specular: sample.is_delta };
+            bounce = Bounce { pdf: sample.pdf, specular: sample.is_delta, from: hit.p };
             direction = frame.to_world(sample.wi);
             origin = leave(hit.p, hit.ng, ng, direction);
             region = arrival.region;
@@ -128,9 +153,19 @@ impl<'a> PathIntegrator<'a> {
 
     /// MIS weight of an emitter reached by BSDF sampling, against having sampled it directly.
     fn emitter_weight(&self, arrival: &Arrival, ng: Vec3, bounce: Bounce) -> f64 {
-        if !self.next_event || bounce.specular {
+        if bounce.specular {
             return 1.0;
         }
+        match self.light_sampling {
+            LightSampling::None => 1.0,
+            LightSampling::Straight => self.straight_emitter_weight(arrival, ng, bounce),
+            LightSampling::Geodesic => geodesic_light::emitter_pdf(self.world, self.propagator, bounce.from, arrival)
+                .map_or(1.0, |light_pdf| power_heuristic(bounce.pdf, light_pdf)),
+        }
+    }
+
+    /// [`Self::emitter_weight`] in flat space.
+    fn straight_emitter_weight(&self, arrival: &Arrival, ng: Vec3, bounce: Bounce) -> f64 {
         let shape = &self.world.object(arrival.region, arrival.object).shape;
         let cos = ng.dot(arrival.direction).abs();
         let choice = self.world.light_probability(arrival.region, arrival.object);
@@ -141,16 +176,57 @@ impl<'a> PathIntegrator<'a> {
         power_heuristic(bounce.pdf, light_pdf)
     }
 
-    /// One light sample with a straight shadow ray (flat space), MIS-weighted.
-    fn direct_light(
+    /// One light sample, MIS-weighted, joined by the spacetime's kind of shadow ray.
+    fn direct_light(&self, at: &Arrival, shading: &Shading<'_>, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
+        match self.light_sampling {
+            LightSampling::None => Rgb::ZERO,
+            LightSampling::Straight => self.straight_light(at, shading, rng, stats),
+            LightSampling::Geodesic => self.geodesic_light(at, shading, rng, stats),
+        }
+    }
+
+    /// One light point joined by its geodesics, the short way round the hole and, at random, the
+    /// long way (Schwarzschild).
+    fn geodesic_light(&self, at: &Arrival, shading: &Shading<'_>, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
+        let (u_choice, u_point, u_way) = (rng.next_f64(), rng.next_2d(), rng.next_f64());
+        let Some(point) = geodesic_light::sample_point(self.world, at, u_choice, u_point) else {
+            return Rgb::ZERO;
+        };
+        let mut sum = Rgb::ZERO;
+        for way in Way::BOTH {
+            if u_way >= geodesic_light::way_probability(way) {
+                continue;
+            }
+            if let Some(light) = point.join(self.propagator, at, way) {
+                sum += self.connected_light(at, shading, &light, stats);
+            }
+        }
+        sum
+    }
+
+    /// A joined light point's MIS-weighted contribution, if it is seen.
+    fn connected_light(
         &self,
         at: &Arrival,
-        bsdf: &Bsdf,
-        frame: &Frame,
-        wo: Vec3,
-        rng: &mut Rng,
+        shading: &Shading<'_>,
+        light: &geodesic_light::Candidate,
         stats: &mut PathStats,
     ) -> Rgb {
+        let wi_local = shading.frame.to_local(light.wi);
+        let f = shading.bsdf.f(shading.wo, wi_local) * wi_local.z.abs() as f32;
+        if f == Rgb::ZERO {
+            return Rgb::ZERO;
+        }
+        let Some(shift) = light.arrives(self.world, self.propagator, at, shading.ng, stats) else {
+            return Rgb::ZERO;
+        };
+        let weight = power_heuristic(light.pdf, shading.bsdf.pdf(shading.wo, wi_local));
+        f * light.emitted * shift * (weight / light.pdf) as f32
+    }
+
+    /// One light sample with a straight shadow ray (flat space).
+    fn straight_light(&self, at: &Arrival, shading: &Shading<'_>, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
+        let Shading { bsdf, frame, wo, .. } = *shading;
         let (u_choice, u_point) = (rng.next_f64(), rng.next_2d());
         let Some(choice) = self.world.choose_light(at.region, u_choice) else { return Rgb::ZERO };
         let light = self.world.object(at.region, choice.object);
@@ -178,6 +254,16 @@ impl<'a> PathIntegrator<'a> {
         let weight = power_heuristic(light_pdf, bsdf.pdf(wo, wi_local));
         f * le * (weight / light_pdf) as f32
     }
+}
+
+/// What direct lighting needs of a shading point.
+#[derive(Clone, Copy)]
+struct Shading<'b> {
+    bsdf: &'b Bsdf,
+    frame: &'b Frame,
+    wo: Vec3,
+    /// Geometric normal in the local frame.
+    ng: Vec3,
 }
 
 /// Radiance factor of a segment whose far end measures the photon at `energy` (relative to the

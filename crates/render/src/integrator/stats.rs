@@ -13,7 +13,7 @@ pub struct FateCounts {
     pub absorbed: u64,
     /// Escaped to the sky of the other region, through a wormhole throat.
     pub traversed: u64,
-    /// Numerical failure of a geodesic.
+    /// Numerical failure of a geodesic (a path segment, or a light connection's visibility ray).
     pub failed: u64,
 }
 

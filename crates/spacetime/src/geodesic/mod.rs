@@ -3,10 +3,12 @@
 //! [`HamiltonianTracer`] integrates Hamilton's equations in 4-D for any [`Metric`];
 //! [`plane`] integrates spherically symmetric spacetimes in the ray's own plane (exactly,
 //! cheaper, with no poles). Both hand every accepted step to the caller, who tests its chord
-//! against a scene and may stop the ray.
+//! against a scene and may stop the ray. [`connect`] finds the ray between two given points
+//! of Schwarzschild spacetime and its bundle density.
 //!
 //! [`Metric`]: crate::metric::Metric
 
+pub mod connect;
 pub mod dopri5;
 mod hamiltonian;
 mod interpolant;

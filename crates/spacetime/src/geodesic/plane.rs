@@ -218,6 +218,15 @@ impl PlaneStep {
         }
     }
 
+    /// Azimuth swept since the ray's start at fraction `θ ∈ [0, 1]` of a curved step; `None` on
+    /// straight pieces, whose rays have no plane (radial) or need none (flat space).
+    pub fn azimuth(&self, theta: f64) -> Option<f64> {
+        match self {
+            PlaneStep::Curved { phi0, attempt, span, .. } => Some(phi0 + theta * span * attempt.h()),
+            PlaneStep::Straight { .. } => None,
+        }
+    }
+
     /// `(φ, u, u')` at fraction `θ` of a curved step.
     fn curve(segment: &Segment, phi0: f64, attempt: &Interpolant<2>, theta: f64) -> (f64, f64, f64) {
         let phi = phi0 + theta * attempt.h();

@@ -1,0 +1,159 @@
+//! Direct light along geodesics (Schwarzschild): next-event estimation that joins a shading
+//! point `x` to a point `y` sampled on an emitter by the light ray between them.
+//!
+//! Two rays join them, one each way round the hole: the short way (azimuth `Δφ ≤ π`) and the
+//! long way (`2π − Δφ`, past the photon sphere), found by shooting in the plane of `x`, `y` and
+//! the centre (`spacetime::geodesic::connect`). They are two sampling strategies: the short way
+//! is tried for every light point, the long way for a random tenth of them. Each one's density
+//! in solid angle at `x` follows from the area density on the light through its ray bundle and
+//! the probability of trying it:
+//!
+//! ```text
+//! p_ω = P(way) · P(light) / (A · |n · t| · dΩ/dA⊥),
+//! ```
+//!
+//! with `A` the light's world area (points are sampled uniformly in it), `n` its world normal, `t`
+//! the ray's world tangent at `y` and `dΩ/dA⊥` the bundle factor (`connect`'s equation (3)). The
+//! integral over the light in world coordinates is the integral over directions at `x` in the
+//! static observer's frame, so no proper areas are needed. Radiance arriving at `x` is the
+//! emitted radiance, seen by the static observer at `y`, times the frequency shift `(E_x/E_y)⁴`.
+//!
+//! A ray reaching a light by BSDF sampling is weighted against the strategy of its own way round,
+//! told by the azimuth it swept. Rays that wound round the hole once or more are never sampled
+//! here; BSDF sampling finds them, and their MIS weight is 1 (Veach 1997, ch. 9: a strategy's
+//! weight only counts where that strategy can produce the path). Each connection is traced
+//! against the scene like any ray, so occluders and capture by the hole are seen exactly as
+//! BSDF-sampled rays see them.
+//!
+//! Kerr and the Ellis wormhole have no connection solver: they render with BSDF sampling alone.
+
+use super::path::{leave, shift};
+use super::stats::PathStats;
+use crate::color::Rgb;
+use crate::geometry::Vec3;
+use crate::propagator::{Arrival, Propagator, RayEnd};
+use crate::world::{Emission, World};
+use spacetime::geodesic::connect::{Connection, Way};
+
+/// A traced connection counts as reaching the sampled point when it hits the light within this
+/// many chord tolerances ε of it (the chord test places hits to within ~ε of the curve).
+const ARRIVAL_TOLERANCE: f64 = 64.0;
+
+/// Probability that a light point is also joined the long way round (the short way always is).
+/// Long-way rays wind close to the photon sphere, so their connection and visibility ray cost
+/// several times the short way's; but their images of a light are so compressed that even a
+/// rarely tried long way has a light-sampling density far above BSDF sampling's, and MIS then
+/// takes the BSDF-sampled long-way hits (the fireflies of brute force) almost entirely off it.
+/// On the black-hole room, per-pixel variance at equal samples fell 3.9× (short way only),
+/// 5.97× (0.1), 6.2× (always) below brute force, at 2.4×, 2.8× and 6.4× its time per sample.
+const LONG_WAY_PROBABILITY: f64 = 0.1;
+
+/// Probability that a light point is joined `way` round: the factor in that strategy's density.
+pub(super) fn way_probability(way: Way) -> f64 {
+    match way {
+        Way::Short => 1.0,
+        Way::Long => LONG_WAY_PROBABILITY,
+    }
+}
+
+/// A point sampled on a light.
+pub(super) struct LightPoint {
+    object: usize,
+    point: Vec3,
+    /// World unit normal.
+    normal: Vec3,
+    emission: Emission,
+    /// Probability of the light's choice, over its world area: the point's area density.
+    density: f64,
+}
+
+/// A sampled light point joined to the shading point, before the visibility test.
+pub(super) struct Candidate {
+    /// Direction the ray leaves the shading point in (its static frame).
+    pub wi: Vec3,
+    /// Emitted radiance towards the shading point, as the static observer at the light sees it.
+    pub emitted: Rgb,
+    /// Density of `wi` in solid angle at the shading point.
+    pub pdf: f64,
+    object: usize,
+    point: Vec3,
+}
+
+/// Samples a light in the region of `at` (`u_choice` picks the light, `u_point` the point).
+pub(super) fn sample_point(world: &World, at: &Arrival, u_choice: f64, u_point: [f64; 2]) -> Option<LightPoint> {
+    let choice = world.choose_light(at.region, u_choice)?;
+    let light = world.object(at.region, choice.object);
+    let emission = light.emission?;
+    let (point, normal) = light.shape.sample_area(u_point);
+    let density = choice.probability / light.shape.area();
+    Some(LightPoint { object: choice.object, point, normal, emission, density })
+}
+
+impl LightPoint {
+    /// Joins the shading point of `at` to this point by the ray going `way` round the hole;
+    /// `None` if there is none or it carries nothing.
+    pub(super) fn join(&self, propagator: &Propagator, at: &Arrival, way: Way) -> Option<Candidate> {
+        let connection = propagator.connect(at.hit.p, self.point, way)?;
+        let normal_local = propagator.local_normal(at.region, self.point, self.normal);
+        let emitted = self.emission.radiance_towards(normal_local, -Vec3::from_array(connection.end));
+        let pdf = way_probability(way) * solid_angle_density(self.density, self.normal, &connection);
+        if emitted == Rgb::ZERO || !(pdf > 0.0 && pdf.is_finite()) {
+            return None;
+        }
+        let wi = Vec3::from_array(connection.start);
+        Some(Candidate { wi, emitted, pdf, object: self.object, point: self.point })
+    }
+}
+
+impl Candidate {
+    /// Traces the connection from the shading point of `at` (local geometric normal
+    /// `ng_local`) against the scene; the radiance factor `(E_x/E_y)⁴` if it reaches the sampled
+    /// point unoccluded, else `None`.
+    pub(super) fn arrives(
+        &self,
+        world: &World,
+        propagator: &Propagator,
+        at: &Arrival,
+        ng_local: Vec3,
+        stats: &mut PathStats,
+    ) -> Option<f32> {
+        let origin = leave(at.hit.p, at.hit.ng, ng_local, self.wi);
+        stats.rays += 1;
+        match propagator.trace(world, at.region, origin, self.wi) {
+            RayEnd::Hit(a)
+                if a.object == self.object
+                    && (a.hit.p - self.point).length() <= ARRIVAL_TOLERANCE * propagator.epsilon() =>
+            {
+                Some(shift(a.energy))
+            }
+            RayEnd::Failed => {
+                stats.fates.failed += 1;
+                None
+            }
+            _ => None,
+        }
+    }
+}
+
+/// Density in solid angle at `from` with which [`LightPoint::join`] would have produced the ray
+/// that reached the emitter of `arrival`: `None` where it never would (the ray wound round the
+/// hole, or the emitter is not sampled), so BSDF sampling's MIS weight is then 1.
+pub(super) fn emitter_pdf(world: &World, propagator: &Propagator, from: Vec3, arrival: &Arrival) -> Option<f64> {
+    // Each way round, the ray is unique (monotone shooting, see `connect`): a ray that went less
+    // than once round is exactly the one `connect` finds, that way round, between its ends.
+    let way = Way::of_sweep(arrival.swept?)?;
+    let choice = world.light_probability(arrival.region, arrival.object);
+    if choice == 0.0 {
+        return None;
+    }
+    let connection = propagator.connect(from, arrival.hit.p, way)?;
+    let area = world.object(arrival.region, arrival.object).shape.area();
+    let pdf = way_probability(way) * solid_angle_density(choice / area, arrival.hit.ng, &connection);
+    Some(pdf).filter(|p| *p > 0.0 && p.is_finite())
+}
+
+/// `p_ω = p_A / (|n · t| dΩ/dA⊥)` for area density `p_A = P(light)/A`.
+fn solid_angle_density(area_density: f64, normal: Vec3, connection: &Connection) -> f64 {
+    let cos = normal.dot(Vec3::from_array(connection.end_tangent)).abs();
+    area_density / (cos * connection.solid_angle_per_area)
+}
