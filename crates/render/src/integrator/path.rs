@@ -81,26 +81,11 @@ impl<'a> PathIntegrator<'a> {
         let mut depth = 0;
         loop {
             stats.rays += 1;
-            let arrival = match self.propagator.trace(self.world, region, origin, direction) {
-                RayEnd::Hit(a) => a,
-                RayEnd::Escaped { region, direction, traversed, energy } => {
-                    radiance += beta * shift(energy) * self.world.sky(region).radiance(direction);
-                    if traversed {
-                        stats.fates.traversed += 1;
-                    } else {
-                        stats.fates.escaped += 1;
-                    }
-                    return radiance;
-                }
-                RayEnd::Captured => {
-                    stats.fates.captured += 1;
-                    return radiance;
-                }
-                RayEnd::Failed => {
-                    stats.fates.failed += 1;
-                    return radiance;
-                }
-            };
+            let arrival =
+                match segment_end(self.world, self.propagator.trace(self.world, region, origin, direction), stats) {
+                    SegmentEnd::Surface(a) => a,
+                    SegmentEnd::Sky(sky) => return radiance + beta * sky,
+                };
             beta *= shift(arrival.energy);
             let object = self.world.object(arrival.region, arrival.object);
             let hit = &arrival.hit;
@@ -268,6 +253,36 @@ struct Shading<'b> {
 
 /// Radiance factor of a segment whose far end measures the photon at `energy` (relative to the
 /// near end): `(ν_near / ν_far)⁴`.
+/// Where a camera path's segment ended: at a surface to shade, or nowhere more, seeing the sky
+/// radiance `Sky` (already frequency-shifted; zero when captured or failed).
+pub(super) enum SegmentEnd {
+    Surface(Arrival),
+    Sky(Rgb),
+}
+
+/// Sorts a traced segment's end, counting the fate of a path that ends there.
+pub(super) fn segment_end(world: &World, end: RayEnd, stats: &mut PathStats) -> SegmentEnd {
+    match end {
+        RayEnd::Hit(arrival) => SegmentEnd::Surface(arrival),
+        RayEnd::Escaped { region, direction, traversed, energy } => {
+            if traversed {
+                stats.fates.traversed += 1;
+            } else {
+                stats.fates.escaped += 1;
+            }
+            SegmentEnd::Sky(shift(energy) * world.sky(region).radiance(direction))
+        }
+        RayEnd::Captured => {
+            stats.fates.captured += 1;
+            SegmentEnd::Sky(Rgb::ZERO)
+        }
+        RayEnd::Failed => {
+            stats.fates.failed += 1;
+            SegmentEnd::Sky(Rgb::ZERO)
+        }
+    }
+}
+
 pub(super) fn shift(energy: f64) -> f32 {
     if energy == 1.0 {
         1.0

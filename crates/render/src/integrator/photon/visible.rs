@@ -6,13 +6,13 @@
 //!
 //! [`background`]: super::background
 
-use super::super::path::{leave, shift};
+use super::super::path::{leave, segment_end, shift, SegmentEnd};
 use super::super::stats::PathStats;
 use super::background::{self, Vertex};
 use crate::color::Rgb;
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
-use crate::propagator::{Propagator, RayEnd};
+use crate::propagator::Propagator;
 use crate::sampling::Rng;
 use crate::world::World;
 use spacetime::Region;
@@ -70,26 +70,11 @@ impl CameraPass<'_> {
         let mut depth = 0;
         loop {
             stats.rays += 1;
-            let arrival = match self.propagator.trace(self.world, region, origin, direction) {
-                RayEnd::Hit(a) => a,
-                RayEnd::Escaped { region, direction, traversed, energy } => {
-                    emitted += beta * shift(energy) * self.world.sky(region).radiance(direction);
-                    if traversed {
-                        stats.fates.traversed += 1;
-                    } else {
-                        stats.fates.escaped += 1;
-                    }
-                    return CameraSample { emitted, visible: None };
-                }
-                RayEnd::Captured => {
-                    stats.fates.captured += 1;
-                    return CameraSample { emitted, visible: None };
-                }
-                RayEnd::Failed => {
-                    stats.fates.failed += 1;
-                    return CameraSample { emitted, visible: None };
-                }
-            };
+            let arrival =
+                match segment_end(self.world, self.propagator.trace(self.world, region, origin, direction), stats) {
+                    SegmentEnd::Surface(a) => a,
+                    SegmentEnd::Sky(sky) => return CameraSample { emitted: emitted + beta * sky, visible: None },
+                };
             beta *= shift(arrival.energy);
             let object = self.world.object(arrival.region, arrival.object);
             let hit = &arrival.hit;
