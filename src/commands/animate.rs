@@ -108,7 +108,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             continue;
         }
         let time = animation.time(n);
-        scene.camera = animation.rig.camera_at(time, &scene.spacetime, scene.axis)?;
+        scene.set_time(time)?;
         let (film, stats) = args.options.render(&scene, &pool, &cancel);
         if cancel.load(Ordering::Relaxed) || stats.tiles_done < stats.tiles_total {
             // Keep what was computed, under a name a later run does not take for a finished frame.

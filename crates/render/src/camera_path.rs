@@ -8,6 +8,7 @@
 
 use crate::camera::Camera;
 use crate::geometry::Vec3;
+use crate::propagator::chart_rotation;
 use glam::DQuat;
 use spacetime::{Region, Spacetime};
 
@@ -195,8 +196,7 @@ fn local_velocity(
     position: Vec3,
     dp_dt: Vec3,
 ) -> Result<Vec3, String> {
-    // The chart's z is the spacetime's axis, as in the propagator.
-    let to_chart = DQuat::from_rotation_arc(axis.normalize(), Vec3::Z);
+    let to_chart = chart_rotation(axis);
     let measured = spacetime::observer::local_velocity(
         spacetime.metric(),
         region,

@@ -67,6 +67,12 @@ pub struct Propagator {
     to_chart: glam::DQuat,
 }
 
+/// The rotation from world axes to the chart's for a spacetime whose symmetry axis points along
+/// the world vector `axis`: the chart's z is that axis.
+pub fn chart_rotation(axis: Vec3) -> glam::DQuat {
+    glam::DQuat::from_rotation_arc(axis.normalize(), Vec3::Z)
+}
+
 impl Propagator {
     /// A propagator for `spacetime`; `scene_radius` bounds every object's distance from the
     /// origin (rays beyond it and moving away have escaped).
@@ -93,7 +99,7 @@ impl Propagator {
 
     /// Points the spacetime's symmetry axis (a Kerr hole's spin) along the world vector `axis`.
     pub fn with_axis(mut self, axis: Vec3) -> Self {
-        self.to_chart = glam::DQuat::from_rotation_arc(axis.normalize(), Vec3::Z);
+        self.to_chart = chart_rotation(axis);
         self
     }
 

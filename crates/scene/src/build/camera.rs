@@ -92,9 +92,9 @@ fn keyframes(camera: &Table<'_>, elements: &[crate::reader::Node<'_>], defaults:
             return Err(n.err("with keyframes, give position and look_at in each keyframe"));
         }
     }
-    let Some(first) = elements.first() else {
+    if elements.is_empty() {
         return Err(camera.loc("keyframes").err("needs at least one keyframe"));
-    };
+    }
     let mut keys: Vec<Keyframe> = Vec::with_capacity(elements.len());
     for element in elements {
         let t = element.table(KEYFRAME_KEYS)?;
@@ -108,7 +108,8 @@ fn keyframes(camera: &Table<'_>, elements: &[crate::reader::Node<'_>], defaults:
         }
         keys.push(keyframe(&t, time, defaults)?);
     }
-    CameraPath::keyframes(keys).map_err(|e| first.err(e))
+    // Times are finite (`f64` checks) and increasing (checked above, where the error has a line).
+    Ok(CameraPath::Keyframes(keys))
 }
 
 /// `[camera.orbit]`: the `[camera]` pose turned about an axis through `center`.

@@ -127,7 +127,7 @@ fn camera_tables<'a>(doc: &Doc<'a>, root: &Table<'a>, view: Option<&str>) -> Res
         Some(i) => Ok((tables, i)),
         None => {
             let name = view.unwrap_or_default();
-            let names: Vec<String> = views.iter().flat_map(|v| v.entries()).map(|(k, _)| format!("\"{k}\"")).collect();
+            let names: Vec<String> = names.iter().flatten().map(|k| format!("\"{k}\"")).collect();
             let known =
                 if names.is_empty() { "it has none".to_string() } else { format!("it has {}", names.join(", ")) };
             Err(doc.error(0, "views", format!("no view named \"{name}\" ([views.{name}]); {known}")))
