@@ -1,14 +1,19 @@
 //! Equal-time comparison of light sampling along geodesics against brute force on the poster's
 //! room with its black hole (the measurement behind BENCHMARKS.md; not a test, since it times).
 //!
-//! 1. A long brute-force render is the reference.
+//! 1. A long brute-force render in two independent halves is the reference.
 //! 2. Each integrator's time per sample is measured on a short pilot render.
 //! 3. Brute force renders `budget` samples per pixel; the path integrator renders as many as fit
 //!    in the same time. Both use seeds other than the reference's.
-//! 4. The RMSE of each against the reference (over pixels and channels) is printed.
+//! 4. The RMSE of each against the reference (over pixels and channels) is printed, less the
+//!    reference's own noise: its per-pixel variance is `E[(A − B)²]/4` for halves `A`, `B`, and
+//!    it inflates every squared error by that much.
+//!
+//! Times are CPU times of the process (all threads, from `/proc/self/stat`; wall-clock time where
+//! that is not available), so other work on the machine does not skew the comparison.
 //!
 //! `cargo run --release --example equal_time -- [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP]`
-//! (default 48 36 4096 64).
+//! (default 48 36 4096 64; each reference half renders half of REFERENCE_SPP).
 
 use render::film::Film;
 use render::scene::Scene;
@@ -34,8 +39,16 @@ fn main() -> Result<(), String> {
     let threads = rayon::current_num_threads();
     println!("room-black-hole at {width}×{height}, depth {}, {threads} threads", scene.settings.max_depth);
 
-    let (reference, seconds) = run(&scene, IntegratorKind::BruteForce, reference_spp, 1000);
-    println!("reference: brute force, {reference_spp} spp, {seconds:.1} s");
+    let half = (reference_spp / 2).max(1);
+    let (reference_a, seconds_a) = run(&scene, IntegratorKind::BruteForce, half, 1000);
+    let (reference_b, seconds_b) = run(&scene, IntegratorKind::BruteForce, half, 1001);
+    let reference = Reference::new(&reference_a, &reference_b);
+    println!(
+        "reference: brute force, 2 × {half} spp, {:.1} s, mean {:.5}, RMSE of its own noise {:.5}",
+        seconds_a + seconds_b,
+        reference.mean(),
+        reference.noise.sqrt()
+    );
 
     let pilot_spp = (budget / 4).max(1);
     let (_, t_brute) = run(&scene, IntegratorKind::BruteForce, pilot_spp, 2000);
@@ -43,32 +56,66 @@ fn main() -> Result<(), String> {
     let path_spp = ((f64::from(budget) * t_brute / t_path).round() as u32).max(1);
     println!("pilot at {pilot_spp} spp: brute force {t_brute:.2} s, path {t_path:.2} s (÷ {:.2})", t_path / t_brute);
 
-    println!("{:<12} {:>5} {:>9} {:>10} {:>10}", "integrator", "spp", "seconds", "mean", "RMSE");
+    println!("{:<12} {:>5} {:>9} {:>10} {:>10}", "integrator", "spp", "CPU s", "mean", "RMSE");
     let mut rmse = Vec::new();
     for (name, kind, spp) in
         [("brute force", IntegratorKind::BruteForce, budget), ("path", IntegratorKind::Path, path_spp)]
     {
         let (film, seconds) = run(&scene, kind, spp, 3000);
-        let e = rms_difference(&film, &reference);
+        let e = reference.rmse(&film);
         println!("{name:<12} {spp:>5} {seconds:>9.2} {:>10.5} {e:>10.5}", mean(&film));
         rmse.push(e);
     }
-    println!(
-        "reference mean {:.5}; RMSE ratio brute force ÷ path at equal time: {:.2}",
-        mean(&reference),
-        rmse[0] / rmse[1]
-    );
+    println!("RMSE ratio brute force ÷ path at equal time: {:.2}", rmse[0] / rmse[1]);
     Ok(())
 }
 
-/// Renders with `integrator` at `spp` and `seed`; the film and the seconds it took.
+/// Renders with `integrator` at `spp` and `seed`; the film and the CPU seconds it took.
 fn run(scene: &Scene, integrator: IntegratorKind, spp: u32, seed: u64) -> (Film, f64) {
     let mut scene = scene.clone();
     scene.settings.integrator = integrator;
     scene.settings.spp = spp;
     scene.settings.seed = seed;
+    let cpu = cpu_seconds();
     let (film, stats) = render::renderer::render(&scene, &AtomicBool::new(false), &|_, _| {});
-    (film, stats.seconds)
+    match (cpu, cpu_seconds()) {
+        (Some(start), Some(end)) => (film, end - start),
+        _ => (film, stats.seconds),
+    }
+}
+
+/// User and system CPU time of this process so far (Linux), in seconds at the usual 100 ticks
+/// per second.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the parenthesised command name; utime and stime are fields 14 and 15.
+    let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
+    let ticks = |i: usize| fields.get(i)?.parse::<f64>().ok();
+    Some((ticks(11)? + ticks(12)?) / 100.0)
+}
+
+/// The mean of two independent reference renders, and the variance of its own noise per pixel
+/// and channel.
+struct Reference {
+    pixels: Vec<[f64; 3]>,
+    noise: f64,
+}
+
+impl Reference {
+    fn new(a: &Film, b: &Film) -> Self {
+        let noise = squared_difference(pixels(a), pixels(b)) / 4.0;
+        let mean = pixels(a).zip(pixels(b)).map(|(p, q)| std::array::from_fn(|i| 0.5 * (p[i] + q[i])));
+        Self { pixels: mean.collect(), noise }
+    }
+
+    fn mean(&self) -> f64 {
+        self.pixels.iter().flatten().sum::<f64>() / (3 * self.pixels.len()) as f64
+    }
+
+    /// RMSE of `film` against the true image: the error against the reference less its noise.
+    fn rmse(&self, film: &Film) -> f64 {
+        (squared_difference(pixels(film), self.pixels.iter().copied()) - self.noise).max(0.0).sqrt()
+    }
 }
 
 fn pixels(film: &Film) -> impl Iterator<Item = [f64; 3]> + '_ {
@@ -80,8 +127,10 @@ fn mean(film: &Film) -> f64 {
     pixels(film).map(|p| p.iter().sum::<f64>()).sum::<f64>() / n
 }
 
-fn rms_difference(a: &Film, b: &Film) -> f64 {
-    let n = f64::from(a.width() * a.height() * 3);
-    let sum: f64 = pixels(a).zip(pixels(b)).map(|(p, q)| (0..3).map(|i| (p[i] - q[i]).powi(2)).sum::<f64>()).sum();
-    (sum / n).sqrt()
+/// Mean squared difference over pixels and channels.
+fn squared_difference(a: impl Iterator<Item = [f64; 3]>, b: impl Iterator<Item = [f64; 3]>) -> f64 {
+    let (sum, n) = a
+        .zip(b)
+        .fold((0.0, 0usize), |(sum, n), (p, q)| (sum + (0..3).map(|i| (p[i] - q[i]).powi(2)).sum::<f64>(), n + 3));
+    sum / n.max(1) as f64
 }

@@ -5,7 +5,7 @@
 use crate::film::{Film, FilmTile, TileBounds};
 use crate::integrator::{photon, PathIntegrator, PathStats};
 use crate::propagator::Propagator;
-use crate::sampling::Rng;
+use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::settings::IntegratorKind;
 use rayon::prelude::*;
@@ -45,18 +45,6 @@ pub fn propagator(scene: &Scene) -> Propagator {
         .with_axis(scene.axis)
 }
 
-/// Sub-pixel position `[0, 1)²` of sample `s` of `spp`: a jittered `k × k` grid when `spp = k²`
-/// (as the poster used), otherwise `spp` strata in x with uniform y.
-pub(crate) fn stratified(s: u32, spp: u32, rng: &mut Rng) -> [f64; 2] {
-    let k = (f64::from(spp)).sqrt() as u32;
-    let [a, b] = rng.next_2d();
-    if k * k == spp {
-        [(f64::from(s % k) + a) / f64::from(k), (f64::from(s / k) + b) / f64::from(k)]
-    } else {
-        [(f64::from(s) + a) / f64::from(spp), b]
-    }
-}
-
 /// Renders one tile.
 fn render_tile(scene: &Scene, integrator: &PathIntegrator<'_>, bounds: TileBounds) -> (FilmTile, PathStats, u64) {
     let settings = &scene.settings;
@@ -66,12 +54,12 @@ fn render_tile(scene: &Scene, integrator: &PathIntegrator<'_>, bounds: TileBound
     for (x, y) in bounds.pixels() {
         let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
         for s in 0..settings.spp {
-            let mut rng = Rng::for_sample(settings.seed, pixel, u64::from(s));
-            let fs = settings.filter.sample(stratified(s, settings.spp, &mut rng));
+            let mut sampler = Sampler::for_sample(settings.seed, pixel, u64::from(s));
+            let fs = settings.filter.sample(sampler.next_2d());
             let film_x = f64::from(x) + 0.5 + fs.offset[0];
             let film_y = f64::from(y) + 0.5 + fs.offset[1];
-            let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, rng.next_2d());
-            let l = integrator.radiance(scene.camera.region, ray.origin, ray.direction, &mut rng, &mut stats);
+            let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, sampler.next_2d());
+            let l = integrator.radiance(scene.camera.region, ray.origin, ray.direction, &mut sampler, &mut stats);
             tile.add_sample(x, y, l * ray.weight, fs.weight);
             samples += 1;
         }

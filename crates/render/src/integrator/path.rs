@@ -17,7 +17,7 @@ use crate::color::Rgb;
 use crate::geometry::{Frame, Ray, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::{Arrival, Propagator, RayEnd};
-use crate::sampling::{power_heuristic, Rng};
+use crate::sampling::{power_heuristic, Sampler};
 use crate::shape::offset_origin;
 use crate::world::World;
 use spacetime::geodesic::connect::Way;
@@ -70,7 +70,14 @@ impl<'a> PathIntegrator<'a> {
 
     /// Radiance arriving at `origin` (in `region`) from the local-frame direction `direction`
     /// (the direction the backward ray leaves in).
-    pub fn radiance(&self, region: Region, origin: Vec3, direction: Vec3, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
+    pub fn radiance(
+        &self,
+        region: Region,
+        origin: Vec3,
+        direction: Vec3,
+        sampler: &mut Sampler,
+        stats: &mut PathStats,
+    ) -> Rgb {
         let mut radiance = Rgb::ZERO;
         let mut beta = Rgb::ONE;
         // Product of η² over refractions: undoes the radiance scaling for the roulette decision,
@@ -107,9 +114,9 @@ impl<'a> PathIntegrator<'a> {
             let wo = frame.to_local(-arrival.direction);
             if !bsdf.is_delta() {
                 let shading = Shading { bsdf: &bsdf, frame: &frame, wo, ng };
-                radiance += beta * self.direct_light(&arrival, &shading, rng, stats);
+                radiance += beta * self.direct_light(&arrival, &shading, sampler, stats);
             }
-            let Some(sample) = bsdf.sample(wo, rng.next_f64(), rng.next_2d()) else {
+            let Some(sample) = bsdf.sample(wo, sampler.next_f64(), sampler.next_2d()) else {
                 stats.fates.absorbed += 1;
                 return radiance;
             };
@@ -123,7 +130,7 @@ impl<'a> PathIntegrator<'a> {
             if depth >= ROULETTE_START && rr_beta < 1.0 {
                 // Survive with probability equal to the throughput: paths that still carry
                 // everything are never cut.
-                if rng.next_f64() >= rr_beta {
+                if sampler.next_f64() >= rr_beta {
                     stats.fates.absorbed += 1;
                     return radiance;
                 }
@@ -162,18 +169,18 @@ impl<'a> PathIntegrator<'a> {
     }
 
     /// One light sample, MIS-weighted, joined by the spacetime's kind of shadow ray.
-    fn direct_light(&self, at: &Arrival, shading: &Shading<'_>, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
+    fn direct_light(&self, at: &Arrival, shading: &Shading<'_>, sampler: &mut Sampler, stats: &mut PathStats) -> Rgb {
         match self.light_sampling {
             LightSampling::None => Rgb::ZERO,
-            LightSampling::Straight => self.straight_light(at, shading, rng, stats),
-            LightSampling::Geodesic => self.geodesic_light(at, shading, rng, stats),
+            LightSampling::Straight => self.straight_light(at, shading, sampler, stats),
+            LightSampling::Geodesic => self.geodesic_light(at, shading, sampler, stats),
         }
     }
 
     /// One light point joined by its geodesics, the short way round the hole and, at random, the
     /// long way (Schwarzschild).
-    fn geodesic_light(&self, at: &Arrival, shading: &Shading<'_>, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
-        let (u_choice, u_point, u_way) = (rng.next_f64(), rng.next_2d(), rng.next_f64());
+    fn geodesic_light(&self, at: &Arrival, shading: &Shading<'_>, sampler: &mut Sampler, stats: &mut PathStats) -> Rgb {
+        let (u_choice, u_point, u_way) = (sampler.next_f64(), sampler.next_2d(), sampler.next_f64());
         let Some(point) = geodesic_light::sample_point(self.world, at, u_choice, u_point) else {
             return Rgb::ZERO;
         };
@@ -210,9 +217,9 @@ impl<'a> PathIntegrator<'a> {
     }
 
     /// One light sample with a straight shadow ray (flat space).
-    fn straight_light(&self, at: &Arrival, shading: &Shading<'_>, rng: &mut Rng, stats: &mut PathStats) -> Rgb {
+    fn straight_light(&self, at: &Arrival, shading: &Shading<'_>, sampler: &mut Sampler, stats: &mut PathStats) -> Rgb {
         let Shading { bsdf, frame, wo, .. } = *shading;
-        let (u_choice, u_point) = (rng.next_f64(), rng.next_2d());
+        let (u_choice, u_point) = (sampler.next_f64(), sampler.next_2d());
         let Some(choice) = self.world.choose_light(at.region, u_choice) else { return Rgb::ZERO };
         let light = self.world.object(at.region, choice.object);
         let (point, normal) = light.shape.sample_area(u_point);

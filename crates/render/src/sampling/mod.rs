@@ -1,8 +1,11 @@
-//! Random numbers and warps. Every sample of every pixel has its own stream, keyed by
-//! `(seed, pixel, sample)`, so an image does not depend on which thread rendered what.
+//! Random numbers and warps. Every sample of every pixel has its own numbers, keyed by
+//! `(seed, pixel, sample)`, so an image does not depend on which thread rendered what: camera
+//! paths draw from a stratified [`Sampler`], everything else from the random stream [`Rng`].
 
 mod rng;
+mod sampler;
 mod warp;
 
 pub use rng::Rng;
+pub use sampler::Sampler;
 pub use warp::*;

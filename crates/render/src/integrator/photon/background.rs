@@ -10,7 +10,7 @@ use crate::color::Rgb;
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::{Propagator, RayEnd};
-use crate::sampling::Rng;
+use crate::sampling::Sampler;
 use crate::sky::Sky;
 use crate::world::World;
 use spacetime::Region;
@@ -49,20 +49,20 @@ pub(super) fn radiance(
     propagator: &Propagator,
     max_depth: u32,
     vertex: Vertex,
-    rng: &mut Rng,
+    sampler: &mut Sampler,
     stats: &mut PathStats,
 ) -> Rgb {
     let Vertex { mut region, mut p, mut ng, mut ng_local, mut frame, mut wo, mut bsdf, mut beta, mut depth } = vertex;
     let mut radiance = Rgb::ZERO;
     while depth <= max_depth {
-        let Some(sample) = bsdf.sample(wo, rng.next_f64(), rng.next_2d()) else { return radiance };
+        let Some(sample) = bsdf.sample(wo, sampler.next_f64(), sampler.next_2d()) else { return radiance };
         beta *= sample.weight;
         let rr_beta = f64::from(beta.max_element()) * sample.eta * sample.eta;
         if beta == Rgb::ZERO || !beta.is_finite() {
             return radiance;
         }
         if depth >= ROULETTE_START && rr_beta < 1.0 {
-            if rng.next_f64() >= rr_beta {
+            if sampler.next_f64() >= rr_beta {
                 return radiance;
             }
             beta /= rr_beta as f32;

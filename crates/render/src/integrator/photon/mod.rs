@@ -32,8 +32,8 @@ use super::stats::PathStats;
 use crate::color::Rgb;
 use crate::film::Film;
 use crate::propagator::Propagator;
-use crate::renderer::{stratified, RenderStats};
-use crate::sampling::Rng;
+use crate::renderer::RenderStats;
+use crate::sampling::{Rng, Sampler};
 use crate::scene::Scene;
 use crate::world::World;
 use emit::RegionSplit;
@@ -214,14 +214,14 @@ fn camera_pass(scene: &Scene, camera: &CameraPass<'_>, iteration: u32) -> (Vec<(
             let row = (0..settings.width)
                 .map(|x| {
                     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
-                    let mut rng = Rng::for_sample(settings.seed, pixel, u64::from(iteration));
-                    let fs = settings.filter.sample(stratified(iteration, settings.spp, &mut rng));
+                    let mut sampler = Sampler::for_sample(settings.seed, pixel, u64::from(iteration));
+                    let fs = settings.filter.sample(sampler.next_2d());
                     let film_x = f64::from(x) + 0.5 + fs.offset[0];
                     let film_y = f64::from(y) + 0.5 + fs.offset[1];
-                    let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, rng.next_2d());
+                    let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, sampler.next_2d());
                     let beta = Rgb::splat(ray.weight * fs.weight as f32);
                     let start = (scene.camera.region, ray.origin, ray.direction);
-                    (camera.trace(start, beta, &mut rng, &mut stats), fs.weight)
+                    (camera.trace(start, beta, &mut sampler, &mut stats), fs.weight)
                 })
                 .collect();
             (row, stats)

@@ -13,7 +13,7 @@ use crate::color::Rgb;
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::Propagator;
-use crate::sampling::Rng;
+use crate::sampling::Sampler;
 use crate::world::World;
 use spacetime::Region;
 
@@ -62,7 +62,7 @@ impl CameraPass<'_> {
         &self,
         (region, origin, direction): (Region, Vec3, Vec3),
         beta: Rgb,
-        rng: &mut Rng,
+        sampler: &mut Sampler,
         stats: &mut PathStats,
     ) -> CameraSample {
         let (mut region, mut origin, mut direction, mut beta) = (region, origin, direction, beta);
@@ -104,11 +104,12 @@ impl CameraPass<'_> {
                     depth: depth + 1,
                 };
                 if self.background {
-                    emitted += background::radiance(self.world, self.propagator, self.max_depth, vertex, rng, stats);
+                    emitted +=
+                        background::radiance(self.world, self.propagator, self.max_depth, vertex, sampler, stats);
                 }
                 return CameraSample { emitted, visible: Some(self.visible_point(&vertex)) };
             }
-            let Some(sample) = bsdf.sample(wo, rng.next_f64(), rng.next_2d()) else {
+            let Some(sample) = bsdf.sample(wo, sampler.next_f64(), sampler.next_2d()) else {
                 stats.fates.absorbed += 1;
                 return CameraSample { emitted, visible: None };
             };
