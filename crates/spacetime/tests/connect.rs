@@ -89,7 +89,8 @@ fn density_matches_the_spread_of_a_traced_ray_bundle() {
         let t = c.end_tangent;
         // The connecting ray reaches y, arriving along the reported directions.
         let (hit, direction) = crossing(&hole, x, c.start, y, t);
-        // The shooting stops at a relative miss of 1e-6 in 1/r.
+        // The shooting stops at a relative miss of 1e-6 in 1/r (its last Newton step's second-order
+        // term, not shot again).
         assert!(distance(hit, y) < 1e-6 * norm3(&y), "{x:?} → {y:?} {way:?}: reaches {hit:?}");
         assert!(
             distance(direction, c.end) < 1e-6,
