@@ -194,18 +194,21 @@ impl Propagator {
         let lapse = |p: Vec3| metric.u_of_world_radius(p.length()).map_or(1.0, |u| metric.lapse(u));
         let lapse0 = lapse(origin);
         let mut arrival: Option<(ChordHit, Vec3, Region, Option<f64>)> = None;
-        let mut last = origin;
+        // Where the previous step ended, and in which region's coordinates.
+        let (mut last, mut last_region) = (origin, region);
         let t = trace_plane(metric, start, &self.trace, |step| {
             let region = step.region();
-            last = Vec3::from_array(step.point(metric, 1.0).position);
+            let position = |theta: f64| Vec3::from_array(step.position(metric, theta));
+            // A step starts where the previous one ended, unless it crossed a throat into the
+            // other region's coordinates: reusing the end saves placing a point per step.
+            let from = if region == last_region { last } else { position(0.0) };
+            (last, last_region) = (position(1.0), region);
             let found = match step {
                 PlaneStep::Straight { from, direction, length, .. } => {
                     let chord = Ray::new(Vec3::from_array(*from), Vec3::from_array(*direction), *length);
                     world.intersect(region, &chord).map(|(object, t)| ChordHit { object, chord, t, theta: 0.0 })
                 }
-                PlaneStep::Curved { .. } => {
-                    self.curved(world, region, &|theta| Vec3::from_array(step.point(metric, theta).position))
-                }
+                PlaneStep::Curved { .. } => self.curved(world, region, &position, from, last),
             };
             match found {
                 Some(hit) => {
@@ -236,21 +239,28 @@ impl Propagator {
         }
     }
 
-    /// Tests a curved step, given as `θ ↦ world position` on `[0, 1]`, against the scene: the
-    /// chord is split in halves until it lies within ε of the curve, nearest half first.
-    fn curved(&self, world: &World, region: Region, point: &dyn Fn(f64) -> Vec3) -> Option<ChordHit> {
+    /// Tests a curved step, given as `θ ↦ world position` on `[0, 1]` with its ends `a` and `b`,
+    /// against the scene: the chord is split in halves until it lies within ε of the curve,
+    /// nearest half first.
+    fn curved(&self, world: &World, region: Region, point: &dyn Fn(f64) -> Vec3, a: Vec3, b: Vec3) -> Option<ChordHit> {
         match self.intersection {
-            Intersection::Chord => self.curved_span(world, region, point, (0.0, point(0.0)), (1.0, point(1.0)), 0),
-            Intersection::Poster { .. } => self.sign_change(world, region, point),
+            Intersection::Chord => self.curved_span(world, region, point, (0.0, a), (1.0, b), 0),
+            Intersection::Poster { .. } => self.sign_change(world, region, point, a, b),
         }
     }
 
     /// The poster's Algorithm 1: an object is hit in a step when its surface function changes
-    /// sign between the step's ends; the crossing is bisected on the curved step until the
-    /// point is within ε of the surface. A thin object crossed between two step ends with the
-    /// same sign is missed, as in the poster.
-    fn sign_change(&self, world: &World, region: Region, point: &dyn Fn(f64) -> Vec3) -> Option<ChordHit> {
-        let (a, b) = (point(0.0), point(1.0));
+    /// sign between the step's ends `a` and `b`; the crossing is bisected on the curved step
+    /// until the point is within ε of the surface. A thin object crossed between two step ends
+    /// with the same sign is missed, as in the poster.
+    fn sign_change(
+        &self,
+        world: &World,
+        region: Region,
+        point: &dyn Fn(f64) -> Vec3,
+        a: Vec3,
+        b: Vec3,
+    ) -> Option<ChordHit> {
         let mut best: Option<ChordHit> = None;
         for (index, object) in world.objects(region).iter().enumerate() {
             let f = |p: Vec3| object.shape.surface_function(p);
@@ -342,7 +352,7 @@ impl Propagator {
                 let s = step.at(theta);
                 to_world * Vec3::new(s.x[1], s.x[2], s.x[3])
             };
-            match self.curved(world, region, &position) {
+            match self.curved(world, region, &position, position(0.0), position(1.0)) {
                 Some(found) => {
                     arrival = Some((found, step.at(found.theta)));
                     Visit::Stop

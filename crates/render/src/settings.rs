@@ -62,7 +62,10 @@ pub struct RenderSettings {
     pub intersection: Intersection,
     pub filter: Filter,
     pub tonemap: ToneMap,
-    /// Relative tolerance of the adaptive geodesic integrator.
+    /// Relative tolerance of the adaptive geodesic integrator. The default, 1e-7, is derived from
+    /// the chord tolerance ε = 10⁻⁴ of the scene's radius: the position error a ray accumulates
+    /// across the scene then stays an order of magnitude below ε (tests/geodesic_tolerance.rs),
+    /// while 1e-8 cost a third more time for no visible difference.
     pub geodesic_rtol: f64,
 }
 
@@ -79,7 +82,7 @@ impl Default for RenderSettings {
             intersection: Intersection::Chord,
             filter: Filter::default(),
             tonemap: ToneMap::default(),
-            geodesic_rtol: 1e-8,
+            geodesic_rtol: 1e-7,
         }
     }
 }

@@ -44,6 +44,8 @@ pub struct Object {
 #[derive(Clone, Debug)]
 struct RegionScene {
     objects: Vec<Object>,
+    /// Each object's bounds, kept because curved ray steps ask for them many times per step.
+    bounds: Vec<Aabb>,
     bvh: Bvh,
     /// Emitting objects with finite area, and the cumulative distribution of their power
     /// (radiance luminance × area) for choosing one.
@@ -75,7 +77,7 @@ impl RegionScene {
         for c in &mut light_cdf {
             *c /= total;
         }
-        Self { objects, bvh, lights, light_cdf, light_power: total, sky }
+        Self { objects, bounds, bvh, lights, light_cdf, light_power: total, sky }
     }
 }
 
@@ -126,7 +128,7 @@ impl World {
         let r = self.region(region);
         r.bvh.any_near(query, |i| {
             let shape = &r.objects[i].shape;
-            let b = shape.bounds();
+            let b = &r.bounds[i];
             if b.min.is_finite() && b.max.is_finite() {
                 return (0..3).all(|k| b.min[k] <= query.max[k] && b.max[k] >= query.min[k]);
             }

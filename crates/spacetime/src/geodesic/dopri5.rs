@@ -94,16 +94,20 @@ impl<const N: usize> Attempt<N> {
 
     /// Continuous extension of order 4 at `θ ∈ [0, 1]` through the step.
     pub fn dense(&self, theta: f64) -> [f64; N] {
+        std::array::from_fn(|i| self.dense_component(theta, i))
+    }
+
+    /// Component `i` of [`Attempt::dense`], for callers that need only one.
+    #[inline]
+    pub fn dense_component(&self, theta: f64, i: usize) -> f64 {
         let k = &self.k;
         let h = self.h;
         let t1 = 1.0 - theta;
-        std::array::from_fn(|i| {
-            let ydiff = self.y1[i] - self.y0[i];
-            let bspl = h * k[0][i] - ydiff;
-            let r4 = ydiff - h * k[6][i] - bspl;
-            let r5 = h * (D1 * k[0][i] + D3 * k[2][i] + D4 * k[3][i] + D5 * k[4][i] + D6 * k[5][i] + D7 * k[6][i]);
-            self.y0[i] + theta * (ydiff + t1 * (bspl + theta * (r4 + t1 * r5)))
-        })
+        let ydiff = self.y1[i] - self.y0[i];
+        let bspl = h * k[0][i] - ydiff;
+        let r4 = ydiff - h * k[6][i] - bspl;
+        let r5 = h * (D1 * k[0][i] + D3 * k[2][i] + D4 * k[3][i] + D5 * k[4][i] + D6 * k[5][i] + D7 * k[6][i]);
+        self.y0[i] + theta * (ydiff + t1 * (bspl + theta * (r4 + t1 * r5)))
     }
 }
 
@@ -121,16 +125,20 @@ pub fn step_factor(error_norm: f64) -> f64 {
     }
 }
 
-/// `x^(−1/5)` for positive normal `x`, to about 1e-12 relative: the float's bits read as a
-/// scaled logarithm give a first guess within ~6 % (Blinn 1997, "Floating-point tricks"), which
-/// Newton's method on `y⁻⁵ = x` refines. libm's `pow` costs more than a whole in-plane step.
+/// `x^(−1/5)` for positive normal `x`, to 1e-3 relative: the float's bits read as a scaled
+/// logarithm give a first guess within 7.5 % (Blinn 1997, "Floating-point tricks"), which two
+/// steps of Newton's method on `y⁻⁵ = x` refine (the error goes 7.5 % → 1.6 % → 9e-4). The
+/// step-size factor is a heuristic that needs a few per cent at most; libm's `pow` costs more
+/// than a whole in-plane step, and every further Newton step (a chain of dependent multiplies)
+/// cost a tenth of one.
 #[inline]
 fn inverse_fifth_root(x: f64) -> f64 {
-    const ONE: f64 = (1023u64 << 52) as f64;
-    let guess = (1.2 * ONE - x.to_bits() as f64 / 5.0) as u64;
-    let mut y = f64::from_bits(guess);
-    for _ in 0..4 {
-        y *= (6.0 - x * y.powi(5)) / 5.0;
+    // 6/5 of the bits of 1.0, minus a fifth of x's bits: in integers, since the conversions
+    // to and from floating point and a division sat on every step's critical path.
+    const SIX_FIFTHS_OF_ONE: u64 = (1023u64 << 52) / 5 * 6;
+    let mut y = f64::from_bits(SIX_FIFTHS_OF_ONE - x.to_bits() / 5);
+    for _ in 0..2 {
+        y *= (6.0 - x * y.powi(5)) * 0.2;
     }
     y
 }
@@ -150,9 +158,11 @@ mod tests {
 
     #[test]
     fn fifth_root_is_accurate_over_the_controlled_range() {
-        for x in [1e-4f64, 3e-4, 0.01, 0.5, 0.9999, 1.0, 1.7, 40.0, 3e3, 1e4] {
+        // Log-spaced over 1e-4 … 1e4, past the clamps at 3e-4 and 3e3.
+        for i in 0..=20_000 {
+            let x = 10f64.powf(-4.0 + 8.0 * f64::from(i) / 20_000.0);
             let exact = x.powf(-0.2);
-            assert!((inverse_fifth_root(x) / exact - 1.0).abs() < 1e-9, "x = {x}");
+            assert!((inverse_fifth_root(x) / exact - 1.0).abs() < 1e-3, "x = {x}");
         }
     }
 

@@ -74,4 +74,13 @@ impl<const N: usize> Interpolant<N> {
             Interpolant::Hermite { y0, d0, y1, d1, h } => rk4::hermite(y0, d0, y1, d1, *h, theta),
         }
     }
+
+    /// Component `i` of [`Interpolant::dense`]: placing a point needs only the position part.
+    #[inline]
+    pub fn dense_component(&self, theta: f64, i: usize) -> f64 {
+        match self {
+            Interpolant::Dopri(a) => a.dense_component(theta, i),
+            Interpolant::Hermite { .. } => self.dense(theta)[i],
+        }
+    }
 }

@@ -134,9 +134,10 @@ impl PlaneRay {
     }
 }
 
-/// One stretch of a ray between throat crossings: the flat solution's constants and the plane.
+/// One stretch of a ray between throat crossings: the flat solution's constants and the plane
+/// (opaque: steps refer to it so points inside them can be placed).
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Segment {
+pub struct Segment {
     e1: [f64; 3],
     e2: [f64; 3],
     region: Region,
@@ -182,24 +183,19 @@ impl Segment {
     }
 }
 
-/// One accepted step of an in-plane ray.
+/// One accepted step of an in-plane ray. A curved step borrows the tracer's segment and
+/// integrator step rather than copying them: building a step for every visit by value moved a
+/// few hundred bytes each time, a measurable share of a render.
 #[derive(Clone, Copy, Debug)]
-// Steps are handed to the visitor by reference and never stored, so the size difference
-// between variants costs nothing and boxing would cost an allocation per step.
-#[allow(clippy::large_enum_variant)]
-pub enum PlaneStep {
+pub enum PlaneStep<'a> {
     /// `span ≤ 1` is the fraction of the integrator step that belongs to this step (a step is
     /// cut where it leaves the escape sphere).
     /// `frame` is the chart direction and its in-plane normal at `phi0`, so points inside the step
     /// need only a small rotation.
-    Curved { segment: SegmentRef, phi0: f64, attempt: Interpolant<2>, span: f64, frame: ([f64; 3], [f64; 3]) },
+    Curved { segment: &'a Segment, phi0: f64, attempt: &'a Interpolant<2>, span: f64, frame: ([f64; 3], [f64; 3]) },
     /// A straight piece: flat space, or a radial ray. `length` may be infinite.
     Straight { region: Region, from: [f64; 3], direction: [f64; 3], length: f64 },
 }
-
-/// Opaque copy of a segment carried by a step.
-#[derive(Clone, Copy, Debug)]
-pub struct SegmentRef(Segment);
 
 /// A point along a step in world terms: where, which way (in the static observer's frame, axes
 /// aligned with the world's), and the inverse chart radius there.
@@ -210,10 +206,10 @@ pub struct PlanePoint {
     pub direction: [f64; 3],
 }
 
-impl PlaneStep {
+impl PlaneStep<'_> {
     pub fn region(&self) -> Region {
         match self {
-            PlaneStep::Curved { segment, .. } => segment.0.region,
+            PlaneStep::Curved { segment, .. } => segment.region,
             PlaneStep::Straight { region, .. } => *region,
         }
     }
@@ -239,32 +235,50 @@ impl PlaneStep {
     pub fn point<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> PlanePoint {
         match self {
             PlaneStep::Curved { segment, phi0, attempt, span, frame: (n0, t0) } => {
-                let seg = &segment.0;
-                let (phi, u, du) = Self::curve(seg, *phi0, attempt, theta * span);
-                let sign = region_sign(seg.region);
+                let (phi, u, du) = Self::curve(segment, *phi0, attempt, theta * span);
+                let sign = region_sign(segment.region);
                 let (s, c) = sin_cos_small(phi - phi0);
                 let n: [f64; 3] = std::array::from_fn(|i| c * n0[i] + s * t0[i]);
                 let t: [f64; 3] = std::array::from_fn(|i| -s * n0[i] + c * t0[i]);
                 let (dr, dphi) = (-metric.radial_stretch(u) * du, u);
                 let dir = normalize3(&std::array::from_fn(|i| sign * (dr * n[i] + dphi * t[i])));
                 let rho = metric.world_radius(u);
-                PlanePoint { region: seg.region, position: scale3(&n, sign * rho), direction: dir }
+                PlanePoint { region: segment.region, position: scale3(&n, sign * rho), direction: dir }
             }
-            PlaneStep::Straight { region, from, direction, length } => {
-                let s = if length.is_finite() {
-                    theta * length
-                } else if theta > 0.0 {
-                    f64::INFINITY
-                } else {
-                    0.0
-                };
-                PlanePoint {
-                    region: *region,
-                    position: std::array::from_fn(|i| from[i] + s * direction[i]),
-                    direction: *direction,
-                }
-            }
+            PlaneStep::Straight { region, from, direction, length } => PlanePoint {
+                region: *region,
+                position: Self::along(from, direction, *length, theta),
+                direction: *direction,
+            },
         }
+    }
+
+    /// World position at fraction `θ ∈ [0, 1]` of the step: [`PlaneStep::point`] without the
+    /// direction, which chord tests never need (they place many points per step, the direction
+    /// costs a square root, a normalisation and `u'`).
+    pub fn position<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> [f64; 3] {
+        match self {
+            PlaneStep::Curved { segment, phi0, attempt, span, frame: (n0, t0) } => {
+                let phi = phi0 + theta * span * attempt.h();
+                let u = segment.flat(phi).0 + attempt.dense_component(theta * span, 0);
+                let (s, c) = sin_cos_small(phi - phi0);
+                let rho = region_sign(segment.region) * metric.world_radius(u);
+                std::array::from_fn(|i| rho * (c * n0[i] + s * t0[i]))
+            }
+            PlaneStep::Straight { from, direction, length, .. } => Self::along(from, direction, *length, theta),
+        }
+    }
+
+    /// The point at fraction `θ` of a straight piece (`θ > 0` of an infinite one is at infinity).
+    fn along(from: &[f64; 3], direction: &[f64; 3], length: f64, theta: f64) -> [f64; 3] {
+        let s = if length.is_finite() {
+            theta * length
+        } else if theta > 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        };
+        std::array::from_fn(|i| from[i] + s * direction[i])
     }
 }
 
@@ -300,12 +314,20 @@ fn sin_cos_small(x: f64) -> (f64, f64) {
         -1.5619206968586225e-16,
     ];
     let x2 = x * x;
-    let (mut s, mut c) = (0.0, 0.0);
-    for n in (0..10).rev() {
-        s = s * x2 + SIN[n];
-        c = c * x2 + COS[n];
-    }
-    (x * s, c)
+    (x * estrin(&SIN, x2), estrin(&COS, x2))
+}
+
+/// `Σ cₙ zⁿ` for ten coefficients by Estrin's scheme: pairs, then pairs of pairs, so the chain
+/// of dependent operations is 6 long instead of Horner's 20 (the latency, not the count of
+/// operations, is what the placement of points on a step waits for).
+#[inline]
+fn estrin(c: &[f64; 10], z: f64) -> f64 {
+    let pair = |k: usize| c[k] + c[k + 1] * z;
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let low = pair(0) + pair(2) * z2;
+    let high = pair(4) + pair(6) * z2;
+    low + high * z4 + pair(8) * (z4 * z4)
 }
 
 /// The outcome of an in-plane trace.
@@ -473,7 +495,7 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
     metric: &M,
     start: PlaneStart,
     settings: &TraceSettings,
-    mut visit: impl FnMut(&PlaneStep) -> Visit,
+    mut visit: impl FnMut(&PlaneStep<'_>) -> Visit,
 ) -> PlaneTrace {
     let ray = match start {
         PlaneStart::Radial { region, from, direction } => {
@@ -537,7 +559,7 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
             let escaping = du1 < 0.0 && u1 <= escape_u;
             let span = if escaping { t.crossing(phi0, &attempt, escape_u) } else { 1.0 };
             let frame = t.segment.chart_direction(phi0);
-            let step = PlaneStep::Curved { segment: SegmentRef(t.segment), phi0, attempt, span, frame };
+            let step = PlaneStep::Curved { segment: &t.segment, phi0, attempt: &attempt, span, frame };
             if visit(&step) == Visit::Stop {
                 return Ok((Fate::Stopped, f64::NAN));
             }
@@ -574,7 +596,7 @@ fn trace_radial<M: PlaneMetric + ?Sized>(
     from: [f64; 3],
     direction: [f64; 3],
     settings: &TraceSettings,
-    mut visit: impl FnMut(&PlaneStep) -> Visit,
+    mut visit: impl FnMut(&PlaneStep<'_>) -> Visit,
 ) -> PlaneTrace {
     let rho = norm3(&from);
     let inward = dot3(&from, &direction) < 0.0;
