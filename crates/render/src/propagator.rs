@@ -226,6 +226,7 @@ impl Propagator {
             Fate::Stopped => {
                 let Some((found, direction, region, swept)) = arrival else { return RayEnd::Failed };
                 let hit = world.surface(region, found.object, &found.chord, found.t);
+                let direction = self.arriving_from_chord_side(region, &hit, found.chord.dir, direction);
                 let energy = lapse0 / lapse(hit.p);
                 RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy, swept })
             }
@@ -236,6 +237,23 @@ impl Propagator {
             }
             Fate::Captured => RayEnd::Captured,
             Fate::Failed(_) => RayEnd::Failed,
+        }
+    }
+
+    /// The local direction of a ray arriving at `hit`, made to agree with the side its chord came
+    /// from. A ray meeting a surface at grazing incidence may be found by a chord that crosses the
+    /// surface while the curve itself turns back within ε of it (bent towards the centre): its
+    /// tangent at the hit then points out of the surface the chord entered. Taken as it is, the
+    /// surface would be lit from behind and the path would continue on the far side — through a
+    /// closed room's wall. Mirroring the direction in the tangent plane changes it by twice its
+    /// (tiny) normal component, within the tolerance the hit was found to.
+    fn arriving_from_chord_side(&self, region: Region, hit: &SurfaceHit, chord: Vec3, direction: Vec3) -> Vec3 {
+        let normal = self.local_normal(region, hit.p, hit.ng);
+        let across = direction.dot(normal);
+        if across * chord.dot(hit.ng) < 0.0 {
+            direction - 2.0 * across * normal
+        } else {
+            direction
         }
     }
 
@@ -366,7 +384,8 @@ impl Propagator {
                 let Ok(local) = Tetrad::local_observer(metric, &state.x) else { return RayEnd::Captured };
                 let (n, energy) = local.backward_direction(&state.p);
                 let hit = world.surface(region, found.object, &found.chord, found.t);
-                let direction = to_world * Vec3::from_array(n);
+                let direction =
+                    self.arriving_from_chord_side(region, &hit, found.chord.dir, to_world * Vec3::from_array(n));
                 let (object, distance) = (found.object, found.t);
                 RayEnd::Hit(Arrival { region, object, hit, direction, distance, energy, swept: None })
             }
