@@ -2,14 +2,16 @@
 //! 2020, "Practical Hash-based Owen Scrambling", §4 — the sampler of Blender Cycles), through
 //! the `sobol_burley` crate.
 //!
-//! Sample `i` of a pixel is point `i` of the sequence, and every draw of a path (the position in
-//! the pixel, the lens, each bounce's BSDF sample, each light sample…) takes the first one or two
-//! dimensions of its own scrambled copy, seeded by the pixel and the draw's number. Sobol's first
-//! two dimensions form a (0, 2)-sequence, so each draw's points over a pixel's samples are
-//! stratified at every power of two: pixel footprints, soft shadows and glossy lobes converge
-//! faster than with independent random numbers. The copies are scrambled and shuffled
-//! independently ("padding"), so different draws are uncorrelated, and each sample on its own is
-//! a vector of independent uniform numbers: estimates stay unbiased whatever a path does with them.
+//! Sample `i` of a pixel is point `i` of the sequence. A path's draws (the position in the pixel,
+//! the lens, each bounce's BSDF sample, each light sample…) are served in order from groups of
+//! four dimensions, each group its own scrambled copy of the sequence's first four dimensions,
+//! seeded by the pixel and the group's number; a 2-D draw takes dimensions 0–1 or 2–3 of a
+//! group. Each draw's points over a pixel's samples are stratified at every power of two (the
+//! first two dimensions form a (0, 2)-sequence): pixel footprints, soft shadows and glossy lobes
+//! converge faster than with independent random numbers. The groups are scrambled and shuffled
+//! independently ("padding"), so they are uncorrelated, and each sample on its own is a vector
+//! of independent uniform numbers: estimates stay unbiased whatever a path does with them. A
+//! group costs one four-wide `sobol_burley::sample_4d`.
 //!
 //! Everything is keyed by `(seed, pixel, sample)`, never by thread, so images are reproducible.
 
@@ -26,8 +28,11 @@ pub struct Sampler {
     index: u32,
     /// Scrambling key of the pixel (and of the sequence, past [`SEQUENCE_LENGTH`] samples).
     key: u64,
-    /// Draws taken so far.
-    draw: u64,
+    /// Groups of four dimensions taken so far.
+    group: u64,
+    /// The current group's numbers, and how many of them are used.
+    numbers: [f32; 4],
+    used: usize,
 }
 
 impl Sampler {
@@ -35,25 +40,35 @@ impl Sampler {
     pub fn for_sample(seed: u64, pixel: u64, sample: u64) -> Self {
         let sequence = sample / SEQUENCE_LENGTH;
         let key = mix64(seed ^ mix64(pixel.wrapping_add(0x9e3779b97f4a7c15) ^ mix64(sequence.wrapping_add(1))));
-        Self { index: (sample % SEQUENCE_LENGTH) as u32, key, draw: 0 }
+        Self { index: (sample % SEQUENCE_LENGTH) as u32, key, group: 0, numbers: [0.0; 4], used: 4 }
     }
 
-    /// The next draw's scrambling seed.
-    fn next_seed(&mut self) -> u32 {
-        self.draw += 1;
-        mix64(self.key ^ self.draw.wrapping_mul(0xd1b54a32d192ed03)) as u32
+    /// Starts the next group of four dimensions.
+    fn refill(&mut self) {
+        self.group += 1;
+        let seed = mix64(self.key ^ self.group.wrapping_mul(0xd1b54a32d192ed03)) as u32;
+        self.numbers = sobol_burley::sample_4d(self.index, 0, seed);
+        self.used = 0;
     }
 
     /// Uniform in `[0, 1)`.
     pub fn next_f64(&mut self) -> f64 {
-        let seed = self.next_seed();
-        f64::from(sobol_burley::sample(self.index, 0, seed))
+        if self.used == 4 {
+            self.refill();
+        }
+        self.used += 1;
+        f64::from(self.numbers[self.used - 1])
     }
 
     /// Uniform in `[0, 1)²`, stratified with the same draw of the pixel's other samples.
     pub fn next_2d(&mut self) -> [f64; 2] {
-        let seed = self.next_seed();
-        [0, 1].map(|dimension| f64::from(sobol_burley::sample(self.index, dimension, seed)))
+        // Pairs start at an even dimension, where the sequence is stratified in two dimensions.
+        if self.used > 2 {
+            self.refill();
+        }
+        let first = self.used.next_multiple_of(2);
+        self.used = first + 2;
+        [f64::from(self.numbers[first]), f64::from(self.numbers[first + 1])]
     }
 }
 
