@@ -40,8 +40,7 @@ fn bounces_off_the_walls_meet_walls_from_inside_the_room() {
         match propagator.trace(&scene.world, Region::Upper, origin, direction) {
             RayEnd::Hit(a) if a.object < WALLS => {
                 hits += 1;
-                let normal = propagator.local_normal(a.region, a.hit.p, a.hit.ng);
-                if a.direction.dot(normal) >= 0.0 {
+                if a.direction.dot(a.ng_local) >= 0.0 {
                     from_behind.push((origin, direction, a.hit.p));
                 }
             }

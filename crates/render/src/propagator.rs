@@ -42,6 +42,8 @@ pub struct Arrival {
     pub region: Region,
     pub object: usize,
     pub hit: SurfaceHit,
+    /// The surface's geometric normal as a unit covector in the local frame at the hit.
+    pub ng_local: Vec3,
     /// Direction of travel at the hit in the local frame.
     pub direction: Vec3,
     /// Straight-line distance of the last chord segment from its start to the hit.
@@ -226,34 +228,19 @@ impl Propagator {
             Fate::Stopped => {
                 let Some((found, direction, region, swept)) = arrival else { return RayEnd::Failed };
                 let hit = world.surface(region, found.object, &found.chord, found.t);
-                let direction = self.arriving_from_chord_side(region, &hit, found.chord.dir, direction);
+                let ng_local = self.local_normal(region, hit.p, hit.ng);
+                let direction = from_chord_side(&hit, ng_local, found.chord.dir, direction);
                 let energy = lapse0 / lapse(hit.p);
-                RayEnd::Hit(Arrival { region, object: found.object, hit, direction, distance: found.t, energy, swept })
+                let object = found.object;
+                RayEnd::Hit(Arrival { region, object, hit, ng_local, direction, distance: found.t, energy, swept })
             }
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
                 let traversed = matches!(t.fate, Fate::Traversed { .. });
                 let region = if traversed { other(region) } else { region };
-                beyond(world, region, last, Vec3::from_array(direction), traversed, lapse0)
+                self.beyond(world, region, last, Vec3::from_array(direction), traversed, lapse0)
             }
             Fate::Captured => RayEnd::Captured,
             Fate::Failed(_) => RayEnd::Failed,
-        }
-    }
-
-    /// The local direction of a ray arriving at `hit`, made to agree with the side its chord came
-    /// from. A ray meeting a surface at grazing incidence may be found by a chord that crosses the
-    /// surface while the curve itself turns back within ε of it (bent towards the centre): its
-    /// tangent at the hit then points out of the surface the chord entered. Taken as it is, the
-    /// surface would be lit from behind and the path would continue on the far side — through a
-    /// closed room's wall. Mirroring the direction in the tangent plane changes it by twice its
-    /// (tiny) normal component, within the tolerance the hit was found to.
-    fn arriving_from_chord_side(&self, region: Region, hit: &SurfaceHit, chord: Vec3, direction: Vec3) -> Vec3 {
-        let normal = self.local_normal(region, hit.p, hit.ng);
-        let across = direction.dot(normal);
-        if across * chord.dot(hit.ng) < 0.0 {
-            direction - 2.0 * across * normal
-        } else {
-            direction
         }
     }
 
@@ -384,15 +371,15 @@ impl Propagator {
                 let Ok(local) = Tetrad::local_observer(metric, &state.x) else { return RayEnd::Captured };
                 let (n, energy) = local.backward_direction(&state.p);
                 let hit = world.surface(region, found.object, &found.chord, found.t);
-                let direction =
-                    self.arriving_from_chord_side(region, &hit, found.chord.dir, to_world * Vec3::from_array(n));
+                let ng_local = self.local_normal(region, hit.p, hit.ng);
+                let direction = from_chord_side(&hit, ng_local, found.chord.dir, to_world * Vec3::from_array(n));
                 let (object, distance) = (found.object, found.t);
-                RayEnd::Hit(Arrival { region, object, hit, direction, distance, energy, swept: None })
+                RayEnd::Hit(Arrival { region, object, hit, ng_local, direction, distance, energy, swept: None })
             }
             // A static observer at infinity measures the conserved `p_t` of the backward ray.
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
                 let end = to_world * Vec3::new(trace.end.x[1], trace.end.x[2], trace.end.x[3]);
-                beyond(world, region, end, to_world * Vec3::from_array(direction), false, p[0])
+                self.beyond(world, region, end, to_world * Vec3::from_array(direction), false, p[0])
             }
             Fate::Captured => RayEnd::Captured,
             Fate::Failed(_) => RayEnd::Failed,
@@ -416,22 +403,53 @@ fn other(region: Region) -> Region {
     }
 }
 
-/// A ray past the escape radius: spacetime is flat enough there that the rest of the way is
-/// the straight line along its asymptotic direction; unbounded objects (infinite planes) can
-/// still be met on it. Its energy is then measured by static observers far away (`energy`).
-fn beyond(world: &World, region: Region, from: Vec3, direction: Vec3, traversed: bool, energy: f64) -> RayEnd {
-    match straight(world, region, from, direction) {
-        RayEnd::Hit(a) => RayEnd::Hit(Arrival { energy, swept: None, ..a }),
-        _ => RayEnd::Escaped { region, direction, traversed, energy },
+/// The local direction of a ray arriving at `hit` (local normal `ng_local`), made to agree with
+/// the side its chord came from. A ray meeting a surface at grazing incidence may be found by a
+/// chord that crosses the surface while the curve itself turns back within ε of it (bent towards
+/// the centre): its tangent at the hit then points out of the surface the chord entered. Taken as
+/// it is, the surface would be lit from behind and the path would continue on the far side —
+/// through a closed room's wall. Mirroring the direction in the tangent plane changes it by twice
+/// its (tiny) normal component, within the tolerance the hit was found to.
+fn from_chord_side(hit: &SurfaceHit, ng_local: Vec3, chord: Vec3, direction: Vec3) -> Vec3 {
+    let across = direction.dot(ng_local);
+    if across * chord.dot(hit.ng) < 0.0 {
+        direction - 2.0 * across * ng_local
+    } else {
+        direction
     }
 }
 
-/// Flat space: one straight chord to infinity.
+impl Propagator {
+    /// A ray past the escape radius: spacetime is flat enough there that the rest of the way is
+    /// the straight line along its asymptotic direction; unbounded objects (infinite planes) can
+    /// still be met on it. Its energy is then measured by static observers far away (`energy`),
+    /// and the surface's normal in their frames, which still differ a little from the world's.
+    fn beyond(
+        &self,
+        world: &World,
+        region: Region,
+        from: Vec3,
+        direction: Vec3,
+        traversed: bool,
+        energy: f64,
+    ) -> RayEnd {
+        match straight(world, region, from, direction) {
+            RayEnd::Hit(a) => {
+                let ng_local = self.local_normal(region, a.hit.p, a.hit.ng);
+                RayEnd::Hit(Arrival { ng_local, energy, swept: None, ..a })
+            }
+            _ => RayEnd::Escaped { region, direction, traversed, energy },
+        }
+    }
+}
+
+/// Flat space, where local frames are the world's: one straight chord to infinity.
 fn straight(world: &World, region: Region, origin: Vec3, direction: Vec3) -> RayEnd {
     match world.intersect(region, &Ray::new(origin, direction, f64::INFINITY)) {
         Some((object, dist)) => {
             let hit = world.surface(region, object, &Ray::new(origin, direction, dist), dist);
-            RayEnd::Hit(Arrival { region, object, hit, direction, distance: dist, energy: 1.0, swept: None })
+            let ng_local = hit.ng;
+            RayEnd::Hit(Arrival { region, object, hit, ng_local, direction, distance: dist, energy: 1.0, swept: None })
         }
         None => RayEnd::Escaped { region, direction, traversed: false, energy: 1.0 },
     }

@@ -96,7 +96,7 @@ impl<'a> PathIntegrator<'a> {
             beta *= shift(arrival.energy);
             let object = self.world.object(arrival.region, arrival.object);
             let hit = &arrival.hit;
-            let ng = self.propagator.local_normal(arrival.region, hit.p, hit.ng);
+            let ng = arrival.ng_local;
             if let Some(emission) = object.emission {
                 let le = emission.radiance_towards(ng, -arrival.direction);
                 if le != Rgb::ZERO {

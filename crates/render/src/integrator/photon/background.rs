@@ -79,7 +79,7 @@ pub(super) fn radiance(
         beta *= shift(arrival.energy);
         let object = world.object(arrival.region, arrival.object);
         let hit = &arrival.hit;
-        ng_local = propagator.local_normal(arrival.region, hit.p, hit.ng);
+        ng_local = arrival.ng_local;
         if let Some(emission) = object.emission.filter(|_| !object.shape.area().is_finite()) {
             radiance += beta * emission.radiance_towards(ng_local, -arrival.direction);
         }

@@ -62,7 +62,7 @@ impl PhotonPass<'_> {
             if bounce + 1 == self.max_depth {
                 return;
             }
-            let ng = self.propagator.local_normal(arrival.region, hit.p, hit.ng);
+            let ng = arrival.ng_local;
             let frame = Frame::from_normal(self.propagator.local_normal(arrival.region, hit.p, hit.ns));
             let Some(sample) = bsdf.sample(frame.to_local(towards_source), rng.next_f64(), rng.next_2d()) else {
                 return;

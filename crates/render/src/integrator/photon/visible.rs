@@ -78,7 +78,7 @@ impl CameraPass<'_> {
             beta *= shift(arrival.energy);
             let object = self.world.object(arrival.region, arrival.object);
             let hit = &arrival.hit;
-            let ng = self.propagator.local_normal(arrival.region, hit.p, hit.ng);
+            let ng = arrival.ng_local;
             if let Some(emission) = object.emission {
                 emitted += beta * emission.radiance_towards(ng, -arrival.direction);
             }
