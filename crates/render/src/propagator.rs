@@ -110,6 +110,11 @@ impl Propagator {
         self.epsilon
     }
 
+    /// Beyond this distance from the origin spacetime counts as flat: rays moving away have escaped.
+    pub fn escape_radius(&self) -> f64 {
+        self.trace.escape_radius
+    }
+
     pub fn is_flat(&self) -> bool {
         match self.spacetime {
             Spacetime::Minkowski(_) => true,
@@ -128,6 +133,31 @@ impl Propagator {
             Spacetime::Schwarzschild(m) if m.mass > 0.0 => at(m, p),
             Spacetime::Ellis(m) => at(m, p),
             _ => 1.0,
+        }
+    }
+
+    /// The lapse `√(−g_tt)` of the static observer at world point `p`: it measures frequencies
+    /// `1/lapse` times those measured at infinity (1 in flat space and in the Ellis wormhole).
+    pub fn lapse(&self, p: Vec3) -> f64 {
+        match &self.spacetime {
+            Spacetime::Schwarzschild(m) if m.mass > 0.0 => m.u_of_world_radius(p.length()).map_or(1.0, |u| m.lapse(u)),
+            _ => 1.0,
+        }
+    }
+
+    /// The largest impact parameter of a ray from infinity that comes within world radius `radius`
+    /// of the centre, in the static spacetimes (Kerr is not one; it gets a flat bound). A ray of
+    /// impact parameter `b = L/E` turns where `E²/A = L²/r²`, i.e. at `b = r/lapse(r)`, which grows
+    /// with `r` outside a Schwarzschild hole's photon sphere `r = 3M` (below it, rays of `b < 3√3 M`
+    /// are captured, so the bound at 3M covers them). In the Ellis wormhole the areal radius is
+    /// the world's and the lapse 1: `b = radius`.
+    pub fn impact_bound(&self, radius: f64) -> f64 {
+        match &self.spacetime {
+            Spacetime::Schwarzschild(m) if m.mass > 0.0 => {
+                let r = radius.max(3.0 * m.mass);
+                r / (1.0 - 2.0 * m.mass / r).sqrt()
+            }
+            _ => radius,
         }
     }
 

@@ -24,15 +24,17 @@
 //! radiance = [0.1, 0.1, 0.1]
 //! ```
 
+pub mod distribution;
 pub mod equirect;
 pub mod gradient;
 pub mod grid;
 pub mod stars;
 
-pub use equirect::Equirect;
+pub use distribution::{SkyDistribution, SkySample};
+pub use equirect::{Equirect, EquirectDistribution};
 pub use gradient::Gradient;
 pub use grid::LatLongGrid;
-pub use stars::{Star, StarField, StarFieldParams};
+pub use stars::{Star, StarDistribution, StarField, StarFieldParams};
 
 use crate::color::Rgb;
 use crate::geometry::Vec3;

@@ -46,7 +46,7 @@
 //! ```
 
 use crate::color::{luminance, Rgb};
-use crate::geometry::Vec3;
+use crate::geometry::{Frame, Vec3};
 use crate::sampling::Rng;
 use std::f64::consts::PI;
 
@@ -113,6 +113,59 @@ impl Star {
     /// True when `dir` lies on the disc.
     pub fn covers(&self, dir: Vec3) -> bool {
         dir.dot(self.dir) >= self.radius.cos()
+    }
+}
+
+/// Directions drawn on the stars' discs in proportion to the stars' flux, for light that starts at
+/// infinity (photons): a cell in proportion to the flux of its stars, then one of its stars likewise
+/// (regenerated from the cell's stream), then a direction uniform in solid angle on its disc. A star is
+/// thus drawn with probability `F / F_total` and a direction on it with density `F / (F_total Ω)`: its
+/// luminance over `F_total`, summed over the discs that cover the direction.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StarDistribution {
+    /// The cells that hold stars, and the running sums of their stars' flux.
+    cells: Vec<Cell>,
+    cdf: Vec<f64>,
+}
+
+impl StarDistribution {
+    /// The flux of all stars, `F_total` (before their colour tints, which have unit luminance).
+    pub fn total_flux(&self) -> f64 {
+        self.cdf.last().copied().unwrap_or(0.0)
+    }
+
+    /// A direction drawn with `u_star` (which star) and `u` (where on its disc); `None` without stars.
+    pub fn sample(&self, field: &StarField, u_star: f64, u: [f64; 2]) -> Option<Vec3> {
+        let target = u_star * self.total_flux();
+        let k = self.cdf.partition_point(|&c| c <= target).min(self.cells.len().checked_sub(1)?);
+        // What is left of `target` past the cells before this one picks the star within it.
+        let mut left = target - if k == 0 { 0.0 } else { self.cdf[k - 1] };
+        let mut chosen = None;
+        field.cell_stars(self.cells[k], |star| {
+            if left >= 0.0 {
+                chosen = Some(*star);
+                left -= star.flux;
+            }
+        });
+        let star = chosen?;
+        // Uniform on the cap of angular radius r: 1 − cos θ uniform on [0, 1 − cos r], written with
+        // 1 − cos r = 2 sin²(r/2) to keep its precision for discs of a few arcseconds.
+        let one_minus_cos = u[0] * 2.0 * (0.5 * star.radius).sin().powi(2);
+        let cos = 1.0 - one_minus_cos;
+        let sin = (one_minus_cos * (2.0 - one_minus_cos)).max(0.0).sqrt();
+        let phi = 2.0 * PI * u[1];
+        Some(Frame::from_normal(star.dir).to_world(Vec3::new(sin * phi.cos(), sin * phi.sin(), cos)))
+    }
+
+    /// Density per steradian of `dir` among the stars: `Σ F / (F_total Ω)` over the discs covering it.
+    pub fn pdf(&self, field: &StarField, dir: Vec3) -> f64 {
+        let total = self.total_flux();
+        if !(total > 0.0) {
+            return 0.0;
+        }
+        let mut density = 0.0;
+        field.covering(dir, |star| density += star.flux / (total * star.solid_angle()));
+        density
     }
 }
 
@@ -237,16 +290,41 @@ impl StarField {
 
     /// Radiance from `dir`: the background plus every star whose disc contains `dir`.
     pub fn radiance(&self, dir: Vec3) -> Rgb {
-        let (cells, count) = self.candidate_cells(dir);
         let mut sum = self.params.background;
+        self.covering(dir, |star| sum += star.radiance());
+        sum
+    }
+
+    /// Calls `visit` for every star whose disc contains `dir`.
+    fn covering(&self, dir: Vec3, mut visit: impl FnMut(&Star)) {
+        let (cells, count) = self.candidate_cells(dir);
         for &c in &cells[..count] {
             self.cell_stars(c, |star| {
                 if star.covers(dir) {
-                    sum += star.radiance();
+                    visit(star);
                 }
             });
         }
-        sum
+    }
+
+    /// The distribution of directions on the stars' discs in proportion to their flux.
+    pub fn distribution(&self) -> StarDistribution {
+        let (mut cells, mut cdf, mut total) = (Vec::new(), Vec::new(), 0.0);
+        for face in 0..6 {
+            for j in 0..self.n {
+                for i in 0..self.n {
+                    let cell = Cell { face, i, j };
+                    let mut flux = 0.0;
+                    self.cell_stars(cell, |star| flux += star.flux);
+                    if flux > 0.0 {
+                        total += flux;
+                        cells.push(cell);
+                        cdf.push(total);
+                    }
+                }
+            }
+        }
+        StarDistribution { cells, cdf }
     }
 
     /// The cells that can hold a star whose disc reaches `dir`: its own cell and, when `dir` is within the

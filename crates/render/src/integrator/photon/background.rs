@@ -1,8 +1,10 @@
-//! Light that photons do not carry — the skies, and emitters of infinite area (only finite ones
-//! can be sampled for photons) — gathered at a visible point by continuing the camera path as a
-//! brute-force path tracer that counts only that light. Transport is linear in its sources, so
-//! this and the photons together are the whole image; skies are large and found easily by
-//! paths, small lamps by photons.
+//! Light that photons do not carry — skies whose receivers no disk of beams covers (see
+//! [`sky`]), and emitters of infinite area (only finite ones can be sampled for photons) —
+//! gathered at a visible point by continuing the camera path as a brute-force path tracer that
+//! counts only that light. Transport is linear in its sources, so this and the photons together
+//! are the whole image.
+//!
+//! [`sky`]: super::sky
 
 use super::super::path::{leave, shift};
 use super::super::stats::PathStats;
@@ -35,16 +37,33 @@ pub(super) struct Vertex {
     pub depth: u32,
 }
 
-/// Whether `world` has light that photons do not carry.
-pub(super) fn present(world: &World) -> bool {
-    let black = |sky: &Sky| matches!(sky, Sky::Constant(c) if *c == Rgb::ZERO);
-    let infinite_emitter =
-        |region: Region| world.objects(region).iter().any(|o| o.emission.is_some() && !o.shape.area().is_finite());
-    [Region::Upper, Region::Lower].iter().any(|&r| !black(world.sky(r)) || infinite_emitter(r))
+/// The light background paths gather: the skies of the regions (upper, lower) marked here, and
+/// emitters of infinite area.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Background {
+    skies: [bool; 2],
+}
+
+impl Background {
+    /// What is left for background paths in `world` when photons carry the skies of the regions
+    /// `carried` says; `None` when nothing is.
+    pub fn new(world: &World, carried: impl Fn(Region) -> bool) -> Option<Self> {
+        let infinite_emitter =
+            |region: Region| world.objects(region).iter().any(|o| o.emission.is_some() && !o.shape.area().is_finite());
+        let regions = [Region::Upper, Region::Lower];
+        let black = |sky: &Sky| matches!(sky, Sky::Constant(c) if *c == Rgb::ZERO);
+        let skies = regions.map(|region| !carried(region) && !black(world.sky(region)));
+        (skies.contains(&true) || regions.into_iter().any(infinite_emitter)).then_some(Self { skies })
+    }
+
+    fn sky(&self, region: Region) -> bool {
+        self.skies[usize::from(region == Region::Lower)]
+    }
 }
 
 /// One path sample of that light scattered at `vertex` towards the camera.
 pub(super) fn radiance(
+    background: Background,
     world: &World,
     propagator: &Propagator,
     max_depth: u32,
@@ -71,9 +90,10 @@ pub(super) fn radiance(
         stats.rays += 1;
         let arrival = match propagator.trace(world, region, leave(p, ng, ng_local, direction), direction) {
             RayEnd::Hit(a) => a,
-            RayEnd::Escaped { region, direction, energy, .. } => {
+            RayEnd::Escaped { region, direction, energy, .. } if background.sky(region) => {
                 return radiance + beta * shift(energy) * world.sky(region).radiance(direction);
             }
+            RayEnd::Escaped { .. } => return radiance,
             RayEnd::Captured | RayEnd::Failed => return radiance,
         };
         beta *= shift(arrival.energy);

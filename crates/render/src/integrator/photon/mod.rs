@@ -2,12 +2,13 @@
 //! curved spacetime.
 //!
 //! Every iteration traces one camera path per pixel to its visible point (see [`visible`]),
-//! then a fixed number of photons from the lights (see [`emit`], [`aim`], [`trace`]), gathered by the
-//! visible points within each pixel's radius, which shrinks from iteration to iteration (see
-//! [`pixel`]). Skies and infinite emitters, which photons cannot start from, are gathered by
-//! paths continued from the visible points (see [`background`]). Lights that camera paths rarely hit by chance — a lamp in a room seen through a
-//! wormhole's throat — are found from their side instead. The estimate is consistent: it
-//! converges to the path tracer's image as iterations grow.
+//! then a fixed number of photons from the lights and skies (see [`emit`], [`aim`], [`sky`],
+//! [`trace`]), gathered by the visible points within each pixel's radius, which shrinks from
+//! iteration to iteration (see [`pixel`]). Lights that camera paths rarely hit by chance — a lamp
+//! in a room seen through a wormhole's throat — are found from their side instead. Emitters of
+//! infinite area, which photons cannot start from, and skies over unbounded receivers are
+//! gathered by paths continued from the visible points (see [`background`]). The estimate is
+//! consistent: it converges to the path tracer's image as iterations grow.
 //!
 //! Determinism: camera paths draw from the stream of (seed, pixel, iteration); photons are
 //! traced in fixed chunks, each with the stream of (seed, chunk, iteration), and what they
@@ -25,6 +26,7 @@ mod background;
 mod emit;
 mod grid;
 mod pixel;
+mod sky;
 mod trace;
 mod visible;
 
@@ -36,7 +38,8 @@ use crate::renderer::RenderStats;
 use crate::sampling::{Rng, Sampler};
 use crate::scene::Scene;
 use crate::world::World;
-use emit::RegionSplit;
+use background::Background;
+use emit::{RegionSplit, Sources};
 use grid::{Grid, Sphere};
 use pixel::PixelEstimate;
 use rayon::prelude::*;
@@ -75,16 +78,17 @@ pub fn render(
     let settings = &scene.settings;
     let pixel_count = settings.width as usize * settings.height as usize;
     let start_radius = |region| settings.photon.radius.unwrap_or_else(|| default_radius(&scene.world, region));
+    let sources = Sources::new(&scene.world, &scene.spacetime, propagator);
     let sppm = Sppm {
         scene,
         camera: CameraPass {
             world: &scene.world,
             propagator,
             max_depth: settings.max_depth,
-            background: background::present(&scene.world),
+            background: Background::new(&scene.world, |region| sources.carry_sky(region)),
         },
         photons: settings.photon.per_iteration.unwrap_or(pixel_count as u64),
-        targets: aim::targets(&scene.world, &scene.spacetime),
+        sources,
         start_radius: [start_radius(Region::Upper), start_radius(Region::Lower)],
     };
     let mut pixels = vec![PixelEstimate::new(); pixel_count];
@@ -124,8 +128,8 @@ struct Sppm<'a> {
     scene: &'a Scene,
     camera: CameraPass<'a>,
     photons: u64,
-    /// Where photons of the upper and the lower region are aimed.
-    targets: [Option<aim::Target>; 2],
+    /// What photons leave from.
+    sources: Sources,
     /// Initial radius of pixels whose first visible point is in the upper, the lower region.
     start_radius: [f64; 2],
 }
@@ -149,10 +153,10 @@ impl Sppm<'_> {
             visible: &visible,
             radii: &radii,
         };
-        let split = RegionSplit::new(&self.scene.world, [pass.upper.spheres(), pass.lower.spheres()]);
+        let split = RegionSplit::new(&self.scene.world, &self.sources, [pass.upper.spheres(), pass.lower.spheres()]);
         let seed = (self.scene.settings.seed, iteration);
         let Gathered { flux, found, paths: photon_stats, mut dropped } =
-            photon_pass(&pass, split.map(|s| (s, &self.targets)), seed, self.photons, cancel)?;
+            photon_pass(&pass, split.map(|s| (s, &self.sources)), seed, self.photons, cancel)?;
         for ((pixel, (sample, weight)), (&radius, (flux, found))) in
             pixels.iter_mut().zip(&samples).zip(radii.iter().zip(flux.into_iter().zip(found)))
         {
@@ -263,7 +267,7 @@ struct Gathered {
 /// Gathers one iteration's photons, chunk by chunk in chunk order; `None` if cancelled.
 fn photon_pass(
     pass: &PhotonPass<'_>,
-    emitters: Option<(RegionSplit, &[Option<aim::Target>; 2])>,
+    emitters: Option<(RegionSplit, &Sources)>,
     (seed, iteration): (u64, u32),
     photons: u64,
     cancel: &AtomicBool,

@@ -8,7 +8,7 @@
 
 use super::super::path::{leave, segment_end, shift, SegmentEnd};
 use super::super::stats::PathStats;
-use super::background::{self, Vertex};
+use super::background::{self, Background, Vertex};
 use crate::color::Rgb;
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
@@ -51,8 +51,8 @@ pub(super) struct CameraPass<'a> {
     pub world: &'a World,
     pub propagator: &'a Propagator,
     pub max_depth: u32,
-    /// Whether the scene has light that photons do not carry (see [`background`]).
-    pub background: bool,
+    /// Light that photons do not carry, if any (see [`background`]).
+    pub background: Option<Background>,
 }
 
 impl CameraPass<'_> {
@@ -103,9 +103,9 @@ impl CameraPass<'_> {
                     beta,
                     depth: depth + 1,
                 };
-                if self.background {
-                    emitted +=
-                        background::radiance(self.world, self.propagator, self.max_depth, vertex, sampler, stats);
+                if let Some(light) = self.background {
+                    let (world, propagator) = (self.world, self.propagator);
+                    emitted += background::radiance(light, world, propagator, self.max_depth, vertex, sampler, stats);
                 }
                 return CameraSample { emitted, visible: Some(self.visible_point(&vertex)) };
             }
