@@ -8,6 +8,7 @@
 //!
 //! [`Metric`]: crate::metric::Metric
 
+pub mod binet_taylor;
 pub mod connect;
 pub mod dopri5;
 mod hamiltonian;
