@@ -31,6 +31,16 @@ fn with(scene: &Scene, integrator: IntegratorKind, spp: u32) -> Scene {
     s
 }
 
+/// `scene` rendered by brute force (256 samples) and by SPPM (64 iterations), the latter with
+/// no NaN sample and no failed ray.
+fn brute_force_and_sppm(scene: &Scene) -> (Film, Film) {
+    let (path, _) = run(&with(scene, IntegratorKind::BruteForce, 256), 2);
+    let (sppm, stats) = run(&with(scene, IntegratorKind::Photon, 64), 2);
+    assert_eq!(stats.nan_samples, 0);
+    assert_eq!(stats.paths.fates.failed, 0);
+    (path, sppm)
+}
+
 fn mean(film: &Film) -> f64 {
     block_means(film, 1)[0]
 }
@@ -215,11 +225,7 @@ fn sky_photons_agree_with_brute_force_in_curved_space() {
     // the ball's sphere about the centre), and the throat passes the other region's sky. Both
     // integrators see the same sky through the throat or past the hole directly.
     for spacetime in [Spacetime::schwarzschild(0.25).unwrap(), Spacetime::ellis(1.0).unwrap()] {
-        let scene = ball_under_sky(spacetime);
-        let (path, _) = run(&with(&scene, IntegratorKind::BruteForce, 256), 2);
-        let (sppm, stats) = run(&with(&scene, IntegratorKind::Photon, 64), 2);
-        assert_eq!(stats.nan_samples, 0);
-        assert_eq!(stats.paths.fates.failed, 0);
+        let (path, sppm) = brute_force_and_sppm(&ball_under_sky(spacetime));
         let (a, b) = (mean(&path), mean(&sppm));
         // Measured: means within 1.8 % (Schwarzschild; 0.5 % after 512 iterations, so mostly the
         // gather radius's early bias) and 0.6 % (Ellis). Blocks differ by at most 3 % of the
@@ -265,11 +271,7 @@ fn wormhole_rooms_share_light_in_the_analytic_balance() {
     // throat); the path tracer's spread is below 0.5 %. The scene's radiance is uniform, so
     // the gather radius adds no bias.
     for (region, exact, tolerance) in [(Region::Upper, 5.0 / 3.0, 0.02), (Region::Lower, 1.0 / 3.0, 0.05)] {
-        let scene = wormhole_rooms(region);
-        let (path, _) = run(&with(&scene, IntegratorKind::BruteForce, 256), 2);
-        let (sppm, stats) = run(&with(&scene, IntegratorKind::Photon, 64), 2);
-        assert_eq!(stats.nan_samples, 0);
-        assert_eq!(stats.paths.fates.failed, 0);
+        let (path, sppm) = brute_force_and_sppm(&wormhole_rooms(region));
         let (a, b) = (mean(&path), mean(&sppm));
         assert!((a / exact - 1.0).abs() < 0.02, "{region:?}: path tracer {a}, exact {exact}");
         assert!((b / exact - 1.0).abs() < tolerance, "{region:?}: SPPM {b}, exact {exact}");
