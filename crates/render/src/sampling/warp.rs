@@ -25,6 +25,16 @@ pub fn uniform_sphere(u: [f64; 2]) -> Vec3 {
 
 pub const UNIFORM_SPHERE_PDF: f64 = 0.25 * FRAC_1_PI;
 
+/// Uniform direction in the cone about +z of half-angle `θ_max`, given as `cap = 1 − cos θ_max`
+/// (which callers can compute without cancellation for narrow cones): `1 − cos θ` is uniform
+/// on `[0, cap]`. Its density is `1 / (2π cap)`.
+pub fn uniform_cone(cap: f64, u: [f64; 2]) -> Vec3 {
+    let one_minus_cos = u[0] * cap;
+    let sin = (one_minus_cos * (2.0 - one_minus_cos)).max(0.0).sqrt();
+    let phi = 2.0 * PI * u[1];
+    Vec3::new(sin * phi.cos(), sin * phi.sin(), 1.0 - one_minus_cos)
+}
+
 /// Uniform point in the unit disk, Shirley–Chiu concentric mapping (area preserving, low distortion).
 pub fn concentric_disk(u: [f64; 2]) -> [f64; 2] {
     let a = 2.0 * u[0] - 1.0;

@@ -47,7 +47,7 @@
 
 use crate::color::{luminance, Rgb};
 use crate::geometry::{Frame, Vec3};
-use crate::sampling::Rng;
+use crate::sampling::{uniform_cone, Rng};
 use std::f64::consts::PI;
 
 /// Slope of the cumulative flux counts, `N(> F) ∝ F^(−γ)`: γ = 3/2 for sources uniform in Euclidean space.
@@ -148,13 +148,9 @@ impl StarDistribution {
             }
         });
         let star = chosen?;
-        // Uniform on the cap of angular radius r: 1 − cos θ uniform on [0, 1 − cos r], written with
-        // 1 − cos r = 2 sin²(r/2) to keep its precision for discs of a few arcseconds.
-        let one_minus_cos = u[0] * 2.0 * (0.5 * star.radius).sin().powi(2);
-        let cos = 1.0 - one_minus_cos;
-        let sin = (one_minus_cos * (2.0 - one_minus_cos)).max(0.0).sqrt();
-        let phi = 2.0 * PI * u[1];
-        Some(Frame::from_normal(star.dir).to_world(Vec3::new(sin * phi.cos(), sin * phi.sin(), cos)))
+        // 1 − cos r = 2 sin²(r/2) keeps its precision for discs of a few arcseconds.
+        let cap = 2.0 * (0.5 * star.radius).sin().powi(2);
+        Some(Frame::from_normal(star.dir).to_world(uniform_cone(cap, u)))
     }
 
     /// Density per steradian of `dir` among the stars: `Σ F / (F_total Ω)` over the discs covering it.
@@ -310,18 +306,13 @@ impl StarField {
     /// The distribution of directions on the stars' discs in proportion to their flux.
     pub fn distribution(&self) -> StarDistribution {
         let (mut cells, mut cdf, mut total) = (Vec::new(), Vec::new(), 0.0);
-        for face in 0..6 {
-            for j in 0..self.n {
-                for i in 0..self.n {
-                    let cell = Cell { face, i, j };
-                    let mut flux = 0.0;
-                    self.cell_stars(cell, |star| flux += star.flux);
-                    if flux > 0.0 {
-                        total += flux;
-                        cells.push(cell);
-                        cdf.push(total);
-                    }
-                }
+        for cell in self.cells() {
+            let mut flux = 0.0;
+            self.cell_stars(cell, |star| flux += star.flux);
+            if flux > 0.0 {
+                total += flux;
+                cells.push(cell);
+                cdf.push(total);
             }
         }
         StarDistribution { cells, cdf }
@@ -366,13 +357,14 @@ impl StarField {
     /// Calls `visit` for every star of the sky (for tests, statistics, or a renderer that wants to treat
     /// stars as lights). Allocation-free.
     pub fn for_each_star(&self, mut visit: impl FnMut(&Star)) {
-        for face in 0..6 {
-            for j in 0..self.n {
-                for i in 0..self.n {
-                    self.cell_stars(Cell { face, i, j }, &mut visit);
-                }
-            }
+        for cell in self.cells() {
+            self.cell_stars(cell, &mut visit);
         }
+    }
+
+    /// Every cell of the cube map, face by face, row by row.
+    fn cells(&self) -> impl Iterator<Item = Cell> + '_ {
+        (0..6).flat_map(move |face| (0..self.n).flat_map(move |j| (0..self.n).map(move |i| Cell { face, i, j })))
     }
 
     fn cell_at(&self, face: u32, x: f64, y: f64) -> Cell {

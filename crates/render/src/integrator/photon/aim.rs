@@ -9,7 +9,7 @@
 //! little off, which costs efficiency only, since the density of what was sampled is exact.
 
 use crate::geometry::{Frame, Vec3};
-use crate::sampling::cosine_hemisphere;
+use crate::sampling::{cosine_hemisphere, uniform_cone};
 use crate::world::World;
 use spacetime::{Region, Spacetime};
 use std::f64::consts::{FRAC_1_PI, PI};
@@ -66,12 +66,7 @@ pub(super) fn sample(
 ) -> Aimed {
     let cone = cone(from, target);
     let direction = match cone {
-        Some((axis, cos_max)) if u_lobe < CONE => {
-            let cos = 1.0 - u[0] * (1.0 - cos_max);
-            let sin = (1.0 - cos * cos).max(0.0).sqrt();
-            let phi = 2.0 * PI * u[1];
-            Frame::from_normal(axis).to_world(Vec3::new(sin * phi.cos(), sin * phi.sin(), cos))
-        }
+        Some((axis, cos_max)) if u_lobe < CONE => Frame::from_normal(axis).to_world(uniform_cone(1.0 - cos_max, u)),
         _ => {
             let side = if two_sided && u_side < 0.5 { -normal } else { normal };
             Frame::from_normal(side).to_world(cosine_hemisphere(u))

@@ -57,7 +57,7 @@ impl Background {
     }
 
     fn sky(&self, region: Region) -> bool {
-        self.skies[usize::from(region == Region::Lower)]
+        self.skies[super::slot(region)]
     }
 }
 

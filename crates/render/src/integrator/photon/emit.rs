@@ -16,6 +16,7 @@
 use super::super::path::leave;
 use super::aim::{self, Target};
 use super::sky::SkySource;
+use super::slot;
 use crate::color::Rgb;
 use crate::geometry::Vec3;
 use crate::propagator::Propagator;
@@ -47,20 +48,20 @@ impl Sources {
     pub fn new(world: &World, spacetime: &Spacetime, propagator: &Propagator) -> Self {
         let targets = aim::targets(world, spacetime);
         let skies = [Region::Upper, Region::Lower]
-            .map(|region| SkySource::new(world.sky(region), targets[index(region)], propagator));
+            .map(|region| SkySource::new(world.sky(region), targets[slot(region)], propagator));
         Self { targets, skies }
     }
 
     /// Whether photons carry the light of `region`'s sky (they do unless it is black or its
     /// receivers are unbounded).
     pub fn carry_sky(&self, region: Region) -> bool {
-        self.skies[index(region)].is_some()
+        self.skies[slot(region)].is_some()
     }
 
     /// The powers of `region`'s area lights and of its sky, in the units of
     /// [`World::light_power`].
     fn powers(&self, world: &World, region: Region) -> (f64, f64) {
-        (world.light_power(region), self.skies[index(region)].as_ref().map_or(0.0, SkySource::power))
+        (world.light_power(region), self.skies[slot(region)].as_ref().map_or(0.0, SkySource::power))
     }
 
     /// Probability that a photon of `region` leaves its sky rather than its area lights: by
@@ -81,10 +82,6 @@ impl Sources {
 /// half by power and half equally: +5 % RMSE, +10 % time, as sky photons mostly start far out
 /// and miss). Any share is unbiased: the photon's power is divided by it.
 const MIN_SHARE: f64 = 0.1;
-
-fn index(region: Region) -> usize {
-    usize::from(region == Region::Lower)
-}
 
 /// Probabilities of starting a photon in the upper and the lower region.
 ///
@@ -135,7 +132,7 @@ pub(super) fn emit(
     let (region, p_region) = split.choose(rng.next_f64());
     let p_sky = sources.sky_probability(world, region);
     if rng.next_f64() < p_sky {
-        let sky = sources.skies[index(region)].as_ref()?;
+        let sky = sources.skies[slot(region)].as_ref()?;
         let photon = sky.emit(region, world.sky(region), propagator, rng)?;
         let p_source = p_region * p_sky;
         return Some(Photon { power: photon.power / p_source as f32, ..photon });
@@ -145,7 +142,7 @@ pub(super) fn emit(
     let emission = light.emission?;
     let (point, normal) = light.shape.sample_area(rng.next_2d());
     let local_normal = propagator.local_normal(region, point, normal);
-    let target = sources.targets[index(region)];
+    let target = sources.targets[slot(region)];
     let numbers = (rng.next_f64(), rng.next_f64(), rng.next_2d());
     let aimed = aim::sample(point, local_normal, emission.two_sided, target, numbers);
     let cos = aimed.direction.dot(local_normal);

@@ -172,10 +172,7 @@ impl Sppm<'_> {
     }
 
     fn start(&self, region: Region) -> f64 {
-        match region {
-            Region::Upper => self.start_radius[0],
-            Region::Lower => self.start_radius[1],
-        }
+        self.start_radius[slot(region)]
     }
 
     /// The pixels' estimates as a film, one sample of weight 1 each.
@@ -189,6 +186,11 @@ impl Sppm<'_> {
         }
         film
     }
+}
+
+/// Where per-region pairs keep `region`'s entry: upper first, lower second.
+fn slot(region: Region) -> usize {
+    usize::from(region == Region::Lower)
 }
 
 /// 1 % of the diagonal of the bounds of `region`'s objects (of the other region's if it has
