@@ -144,6 +144,36 @@ impl World {
         })
     }
 
+    /// Whether no object of `region` comes within `margin` of the triangle `corners`, except that
+    /// each `(object, corner)` of `ends` may touch it at that corner alone: a ray known to lie
+    /// inside the triangle, from a point on one object to a point on another, is then unblocked.
+    ///
+    /// Conservative: only flat shapes can be cleared (the triangle must keep strictly to one side
+    /// of their plane); any other shape whose bounds reach the triangle's counts as in the way.
+    pub fn triangle_is_clear(
+        &self,
+        region: Region,
+        corners: [Vec3; 3],
+        ends: [(usize, usize); 2],
+        margin: f64,
+    ) -> bool {
+        let r = self.region(region);
+        let reach = Vec3::splat(margin);
+        let [a, b, c] = corners;
+        let query = Aabb::new(a.min(b).min(c) - reach, a.max(b).max(c) + reach);
+        let in_the_way = |i: usize| {
+            let b = &r.bounds[i];
+            if (0..3).any(|k| b.min[k] > query.max[k] || b.max[k] < query.min[k]) {
+                return false;
+            }
+            let Some((point, normal)) = r.objects[i].shape.supporting_plane() else { return true };
+            let touching = ends.iter().find(|(object, _)| *object == i).map(|&(_, corner)| corner);
+            let mut heights = (0..3).filter(|&k| Some(k) != touching).map(|k| (corners[k] - point).dot(normal));
+            !(heights.clone().all(|h| h > margin) || heights.all(|h| h < -margin))
+        };
+        !r.bvh.any_near(&query, in_the_way)
+    }
+
     pub fn object(&self, region: Region, index: usize) -> &Object {
         &self.region(region).objects[index]
     }

@@ -148,3 +148,67 @@ fn degenerate_pairs_have_no_connection() {
     // Inside the photon sphere (r < 3M) a static observer has no critical angle to wind at.
     assert!(connect(&hole, [2.5, 0.0, 0.0], [0.0, 10.0, 0.0], Way::Long).is_none());
 }
+
+/// Points of the ray leaving `x` along the static-frame direction `n`, every tenth of a step,
+/// until it has swept `sweep` about the centre.
+fn ray_points(hole: &Schwarzschild, x: [f64; 3], n: [f64; 3], sweep: f64) -> Vec<[f64; 3]> {
+    let settings = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-12 }, ..TraceSettings::default() };
+    let start = PlaneStart::from_observer(hole, Region::Upper, x, n).unwrap();
+    let mut points = Vec::new();
+    trace_plane(hole, start, &settings, |step: &PlaneStep| {
+        for k in 0..10 {
+            let theta = f64::from(k) / 10.0;
+            if step.azimuth(theta).unwrap() > sweep {
+                return Visit::Stop;
+            }
+            points.push(step.point(hole, theta).position);
+        }
+        Visit::Continue
+    });
+    points
+}
+
+/// How far `p` lies outside the triangle `[a, b, c]`: its distance from the triangle's plane or
+/// beyond the nearest of its edges, whichever is larger (0 inside).
+fn outside(p: [f64; 3], [a, b, c]: [[f64; 3]; 3]) -> f64 {
+    let normal = normalize3(&cross3(&sub(b, a), &sub(c, a)));
+    let mut worst = dot3(&sub(p, a), &normal).abs();
+    for (from, to) in [(a, b), (b, c), (c, a)] {
+        // Distance beyond the edge, in the plane: positive on the side away from the triangle.
+        let out = normalize3(&cross3(&sub(to, from), &normal));
+        worst = worst.max(dot3(&sub(p, from), &out));
+    }
+    worst
+}
+
+/// The triangle of a connection's chord and end tangents holds the whole ray: the tangent at the
+/// start is the ray's world tangent, and the ray bends one way by less than π. Pairs from the
+/// black-hole room and the strong-bending pairs above (M = 1).
+#[test]
+fn the_short_way_round_lies_in_the_triangle_of_its_chord_and_end_tangents() {
+    let room = Schwarzschild::new(0.3);
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut uniform = move || {
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut in_room = || [12.0 * uniform() - 6.0, 8.0 * uniform() - 4.0, 16.0 * uniform() - 8.0];
+    let mut pairs: Vec<_> = (0..200).map(|_| (room, in_room(), in_room())).collect();
+    pairs.extend(PAIRS.map(|(x, y)| (Schwarzschild::new(1.0), x, y)));
+    let (mut tried, mut bounded) = (0, 0);
+    for (hole, x, y) in pairs {
+        let Some(c) = connect(&hole, x, y, Way::Short) else { continue };
+        tried += 1;
+        let Some(triangle) = c.enclosing_triangle(x, y) else { continue };
+        bounded += 1;
+        assert_eq!((triangle[0], triangle[2]), (x, y));
+        let scale = norm3(&sub(y, x));
+        for p in ray_points(&hole, x, c.start, c.swept) {
+            // The ray misses y by up to 1e-6 r (the shooting's tolerance).
+            let out = outside(p, triangle);
+            assert!(out < 1e-6 * scale, "{x:?} → {y:?}: {p:?} lies {out:e} outside {triangle:?}");
+        }
+    }
+    // Only rays turning by π or more, round the photon sphere, have no triangle.
+    assert!(tried > 150 && bounded as f64 > 0.95 * tried as f64, "{bounded} of {tried} bounded");
+}

@@ -97,6 +97,10 @@ impl Disk {
         (self.to_world.point(Vec3::new(x, y, 0.0) * self.radius), self.normal)
     }
 
+    pub fn supporting_plane(&self) -> (Vec3, Vec3) {
+        (self.to_world.point(Vec3::ZERO), self.normal)
+    }
+
     /// Object-space signed height above the disk's plane where the point projects inside the
     /// disk, else the distance to the rim; times `σ_min` (a lower bound under non-uniform scale).
     pub fn surface_function(&self, p: Vec3) -> f64 {

@@ -193,6 +193,18 @@ impl Shape {
         dispatch!(self, s => s.surface_function(p))
     }
 
+    /// The plane an open flat shape lies in, as a point on it and its unit normal; `None` for
+    /// curved shapes. Whatever lies strictly on one side of it cannot touch the shape.
+    pub fn supporting_plane(&self) -> Option<(Vec3, Vec3)> {
+        match self {
+            Shape::Plane(s) => Some(s.supporting_plane()),
+            Shape::Rectangle(s) => Some(s.supporting_plane()),
+            Shape::Disk(s) => Some(s.supporting_plane()),
+            Shape::Triangle(s) => s.supporting_plane(),
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cylinder(_) => None,
+        }
+    }
+
     /// True when the shape encloses a volume (sphere, cuboid, cylinder), so that the sign of
     /// [`Shape::surface_function`] means inside/outside. Planes, rectangles, disks and single
     /// triangles are open.

@@ -85,6 +85,10 @@ impl Plane {
         (self.point, self.frame.n)
     }
 
+    pub fn supporting_plane(&self) -> (Vec3, Vec3) {
+        (self.point, self.frame.n)
+    }
+
     /// The exact signed distance: positive on the normal's side.
     pub fn surface_function(&self, p: Vec3) -> f64 {
         (p - self.point).dot(self.frame.n)

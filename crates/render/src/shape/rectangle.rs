@@ -104,6 +104,10 @@ impl Rectangle {
         (self.corner + self.edge_u * u[0] + self.edge_v * u[1], self.normal)
     }
 
+    pub fn supporting_plane(&self) -> (Vec3, Vec3) {
+        (self.corner, self.normal)
+    }
+
     /// Signed distance to the plane where the point projects inside, else the (positive) distance
     /// to the nearest edge.
     pub fn surface_function(&self, p: Vec3) -> f64 {

@@ -60,6 +60,13 @@ impl Triangle {
         self.vertex_indices().map(|i| positions[i])
     }
 
+    /// `None` for a degenerate triangle (no plane).
+    pub fn supporting_plane(&self) -> Option<(Vec3, Vec3)> {
+        let [a, b, c] = self.vertices();
+        let normal = (b - a).cross(c - a).try_normalize()?;
+        Some((a, normal))
+    }
+
     pub fn bounds(&self) -> Aabb {
         let [a, b, c] = self.vertices();
         Aabb::new(a, b).grow(c)

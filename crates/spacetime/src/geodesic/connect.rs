@@ -82,6 +82,8 @@ const UTOL: f64 = 1e-6;
 /// and `x`): no connection is returned.
 const MIN_SIN_SWEEP: f64 = 1e-9;
 const MAX_ITERATIONS: u32 = 100;
+/// Below this sine of its turning angle a ray's end tangents meet too far off to bound it.
+const MIN_SIN_TURN: f64 = 1e-9;
 const MAX_STEPS: u32 = 10_000;
 
 /// Which of the two rays that go round the centre less than once.
@@ -114,6 +116,8 @@ impl Way {
 pub struct Connection {
     /// Unit direction the ray leaves `x` in, in the static frame at `x` (axes along the world's).
     pub start: [f64; 3],
+    /// Unit world-coordinate tangent at `x`.
+    pub start_tangent: [f64; 3],
     /// Unit direction of travel at `y`, in the static frame at `y`.
     pub end: [f64; 3],
     /// Unit world-coordinate tangent at `y` (what a world-coordinate surface is projected along).
@@ -124,6 +128,43 @@ pub struct Connection {
     pub solid_angle_per_area: f64,
     /// Azimuth swept from `x` to `y`: `Δφ ∈ (0, π]` the short way, `2π − Δφ` the long way.
     pub swept: f64,
+}
+
+impl Connection {
+    /// A triangle `[x, z, y]` that holds the whole ray from `x` to `y`, or `None` where the ray
+    /// goes the long way round or turns by π or more (or too little to place `z`).
+    ///
+    /// In world coordinates the ray is the plane curve `r = 1/u(φ)`, whose curvature
+    /// `u³(u + u'')/(u² + u'²)^{3/2} = 3Mu⁵/(u² + u'²)^{3/2}` (by (1)) is positive: it bends towards
+    /// the centre all along. A plane arc that bends one way and turns by less than π lies on one
+    /// side of its chord and of the tangent lines at both ends, so inside the triangle they bound,
+    /// whose third corner `z` is where the end tangents meet. Nothing that stays clear of the
+    /// triangle can block the ray: a visibility test without tracing it.
+    ///
+    /// The turning angle is the sweep `Δφ` plus the change of the tangent's angle from the
+    /// outward radial direction, which stays in `(0, π)` since the ray sweeps one way. The short
+    /// way round (`Δφ ≤ π`) it therefore lies in `[0, 2π)`, and the sine of the angle from the
+    /// start tangent to the end one, about the axis the ray sweeps round (`x × t0`), is positive
+    /// exactly when the turning is below π.
+    pub fn enclosing_triangle(&self, x: [f64; 3], y: [f64; 3]) -> Option<[[f64; 3]; 3]> {
+        if self.swept > PI {
+            return None;
+        }
+        let (t0, t1) = (self.start_tangent, self.end_tangent);
+        let axis = normalize3(&cross3(&x, &t0));
+        let sin_turn = dot3(&cross3(&t0, &t1), &axis);
+        if !(sin_turn > MIN_SIN_TURN) {
+            return None;
+        }
+        // z = x + a t0 = y − b t1, solved in the plane.
+        let chord: [f64; 3] = std::array::from_fn(|i| y[i] - x[i]);
+        let a = dot3(&cross3(&chord, &t1), &axis) / sin_turn;
+        let b = dot3(&cross3(&t0, &chord), &axis) / sin_turn;
+        if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
+            return None;
+        }
+        Some([x, std::array::from_fn(|i| x[i] + a * t0[i]), y])
+    }
 }
 
 /// How one shot from `x` ended.
@@ -243,13 +284,15 @@ impl Ends {
         if !(self.jacobi > 0.0) {
             return None;
         }
+        let stretch = |u: f64| 1.0 / (1.0 - 2.0 * metric.mass * u).sqrt();
         let (s_psi, c_psi) = self.psi.sin_cos();
         let (s_sw, c_sw) = self.sweep.sin_cos();
         let start = std::array::from_fn(|i| c_psi * self.xh[i] + s_psi * self.e2[i]);
+        let start_tangent =
+            normalize3(&std::array::from_fn(|i| c_psi / stretch(self.ux) * self.xh[i] + s_psi * self.e2[i]));
         // Radial and azimuthal unit vectors at y, in the plane.
         let radial: [f64; 3] = std::array::from_fn(|i| c_sw * self.xh[i] + s_sw * self.e2[i]);
         let azimuthal: [f64; 3] = std::array::from_fn(|i| -s_sw * self.xh[i] + c_sw * self.e2[i]);
-        let stretch = |u: f64| 1.0 / (1.0 - 2.0 * metric.mass * u).sqrt();
         // Static frame: (n_r, n_φ) ∝ (−σ u', u); world coordinates: (−u', u).
         let along = |dr: f64| normalize3(&std::array::from_fn(|i| dr * radial[i] + self.uy * azimuthal[i]));
         let end = along(-stretch(self.uy) * self.du);
@@ -257,7 +300,7 @@ impl Ends {
         let t_phi = self.uy / self.du.hypot(self.uy);
         // Equation (3).
         let density = s_psi.powi(3) * stretch(self.ux) * self.uy.powi(3) / (self.ux * self.jacobi * s_sw.abs() * t_phi);
-        Some(Connection { start, end, end_tangent, solid_angle_per_area: density, swept: self.sweep })
+        Some(Connection { start, start_tangent, end, end_tangent, solid_angle_per_area: density, swept: self.sweep })
     }
 }
 
