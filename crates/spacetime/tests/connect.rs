@@ -212,3 +212,37 @@ fn the_short_way_round_lies_in_the_triangle_of_its_chord_and_end_tangents() {
     // Only rays turning by π or more, round the photon sphere, have no triangle.
     assert!(tried > 150 && bounded as f64 > 0.95 * tried as f64, "{bounded} of {tried} bounded");
 }
+
+/// The chain of triangles between a connection's waypoints holds the whole ray, either way
+/// round: every traced point lies in one of them.
+#[test]
+fn both_ways_round_lie_in_the_triangles_between_their_waypoints() {
+    let room = Schwarzschild::new(0.3);
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut uniform = move || {
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut in_room = || [12.0 * uniform() - 6.0, 8.0 * uniform() - 4.0, 16.0 * uniform() - 8.0];
+    let mut pairs: Vec<_> = (0..100).map(|_| (room, in_room(), in_room())).collect();
+    pairs.extend(PAIRS.map(|(x, y)| (Schwarzschild::new(1.0), x, y)));
+    for way in Way::BOTH {
+        let (mut tried, mut bounded, mut pieces) = (0, 0, 0);
+        for &(hole, x, y) in &pairs {
+            let Some(c) = connect(&hole, x, y, way) else { continue };
+            tried += 1;
+            let Some(triangles) = c.enclosing_triangles(x, y).collect::<Option<Vec<_>>>() else { continue };
+            bounded += 1;
+            pieces += triangles.len();
+            assert_eq!((triangles[0][0], triangles[triangles.len() - 1][2]), (x, y));
+            let scale = norm3(&sub(y, x));
+            for p in ray_points(&hole, x, c.start, c.swept) {
+                let out = triangles.iter().map(|t| outside(p, *t)).fold(f64::INFINITY, f64::min);
+                assert!(out < 1e-6 * scale, "{x:?} → {y:?} {way:?}: {p:?} lies {out:e} outside all");
+            }
+        }
+        assert!(tried > 50 && bounded as f64 > 0.95 * tried as f64, "{way:?}: {bounded} of {tried} bounded");
+        // The long way winds round the hole in several pieces.
+        assert!(way == Way::Short || pieces > 3 * bounded, "{pieces} pieces for {bounded} rays");
+    }
+}

@@ -39,6 +39,9 @@ use spacetime::geodesic::connect::{Connection, Way};
 /// many chord tolerances ε of it (the chord test places hits to within ~ε of the curve).
 const ARRIVAL_TOLERANCE: f64 = 64.0;
 
+/// No object's index: an end of a connection that lies on no surface.
+const NOTHING: usize = usize::MAX;
+
 /// Probability that a light point is also joined the long way round (the short way always is).
 /// Long-way rays wind close to the photon sphere, so their connection and visibility ray cost
 /// several times the short way's; but their images of a light are so compressed that even a
@@ -77,8 +80,7 @@ pub(super) struct Candidate {
     pub pdf: f64,
     object: usize,
     point: Vec3,
-    /// A triangle from the shading point to `point` that holds the whole ray, if it has one.
-    hull: Option<[Vec3; 3]>,
+    connection: Connection,
 }
 
 /// Samples a light in the region of `at` (`u_choice` picks the light, `u_point` the point).
@@ -103,9 +105,7 @@ impl LightPoint {
             return None;
         }
         let wi = Vec3::from_array(connection.start);
-        let hull =
-            connection.enclosing_triangle(at.hit.p.to_array(), self.point.to_array()).map(|t| t.map(Vec3::from_array));
-        Some(Candidate { wi, emitted, pdf, object: self.object, point: self.point, hull })
+        Some(Candidate { wi, emitted, pdf, object: self.object, point: self.point, connection })
     }
 }
 
@@ -128,11 +128,24 @@ impl Candidate {
         self.traced(world, propagator, at, ng_local, stats)
     }
 
-    /// Whether no object comes near the triangle that holds the connection (except the two it
-    /// joins, at its ends).
+    /// Whether no object comes near the triangle that holds the connection, or else the
+    /// triangles between its waypoints, except the two objects it joins, at its ends.
     fn is_clear(&self, world: &World, propagator: &Propagator, at: &Arrival) -> bool {
-        let ends = [(at.object, 0), (self.object, 2)];
-        self.hull.is_some_and(|hull| world.triangle_is_clear(at.region, hull, ends, propagator.epsilon()))
+        let (x, y) = (at.hit.p.to_array(), self.point.to_array());
+        let clear = |triangle: [[f64; 3]; 3], first: bool, last: bool| {
+            let ends = [(if first { at.object } else { NOTHING }, 0), (if last { self.object } else { NOTHING }, 2)];
+            world.triangle_is_clear(at.region, triangle.map(Vec3::from_array), ends, propagator.epsilon())
+        };
+        if self.connection.enclosing_triangle(x, y).is_some_and(|triangle| clear(triangle, true, true)) {
+            return true;
+        }
+        let mut pieces = self.connection.enclosing_triangles(x, y).enumerate().peekable();
+        while let Some((k, piece)) = pieces.next() {
+            if !piece.is_some_and(|triangle| clear(triangle, k == 0, pieces.peek().is_none())) {
+                return false;
+            }
+        }
+        true
     }
 
     /// [`Candidate::arrives`] by tracing the connection against the scene.
@@ -217,10 +230,10 @@ mod tests {
         World::new(materials, (objects, black()), (Vec::new(), black()))
     }
 
-    /// The triangle test never clears a connection that tracing finds blocked, and it clears a
-    /// good part of the others, with the same frequency shift.
+    /// The triangle tests never clear a connection that tracing finds blocked, and they clear a
+    /// good part of the others, either way round, with the same frequency shift.
     #[test]
-    fn connections_cleared_by_their_triangle_are_seen_by_tracing() {
+    fn connections_cleared_by_their_triangles_are_seen_by_tracing() {
         let world = room();
         let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
         let propagator = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
@@ -230,36 +243,38 @@ mod tests {
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         let eye = Vec3::new(0.5, 3.0, 7.0);
-        let (mut cleared, mut seen, mut blocked) = (0, 0, 0);
-        for _ in 0..400 {
-            let target = Vec3::new(12.0 * uniform() - 6.0, -4.0, 16.0 * uniform() - 8.0);
-            let RayEnd::Hit(at) = propagator.trace(&world, Region::Upper, eye, (target - eye).normalize()) else {
-                continue;
-            };
-            let point = sample_point(&world, &at, uniform(), [uniform(), uniform()]).unwrap();
-            let Some(candidate) = point.join(&propagator, &at, Way::Short) else { continue };
-            let mut stats = PathStats::default();
-            let traced = candidate.traced(&world, &propagator, &at, at.ng_local, &mut stats);
-            let clear = candidate.is_clear(&world, &propagator, &at);
-            match traced {
-                Some(shift) => {
-                    seen += 1;
-                    if clear {
-                        cleared += 1;
-                        let direct = super::shift(propagator.lapse(at.hit.p) / propagator.lapse(candidate.point));
-                        // The traced ray starts off the surface and ends within ~ε of the point.
-                        assert!((direct / shift - 1.0).abs() < 1e-4, "shift {direct} vs traced {shift}");
+        for way in Way::BOTH {
+            let (mut cleared, mut seen, mut blocked) = (0, 0, 0);
+            for _ in 0..400 {
+                let target = Vec3::new(12.0 * uniform() - 6.0, -4.0, 16.0 * uniform() - 8.0);
+                let RayEnd::Hit(at) = propagator.trace(&world, Region::Upper, eye, (target - eye).normalize()) else {
+                    continue;
+                };
+                let point = sample_point(&world, &at, uniform(), [uniform(), uniform()]).unwrap();
+                let Some(candidate) = point.join(&propagator, &at, way) else { continue };
+                let mut stats = PathStats::default();
+                let traced = candidate.traced(&world, &propagator, &at, at.ng_local, &mut stats);
+                let clear = candidate.is_clear(&world, &propagator, &at);
+                match traced {
+                    Some(shift) => {
+                        seen += 1;
+                        if clear {
+                            cleared += 1;
+                            let direct = super::shift(propagator.lapse(at.hit.p) / propagator.lapse(candidate.point));
+                            // The traced ray starts off the surface and ends within ~ε of the point.
+                            assert!((direct / shift - 1.0).abs() < 1e-4, "shift {direct} vs traced {shift}");
+                        }
+                    }
+                    None => {
+                        blocked += 1;
+                        assert!(!clear, "{way:?}: {:?} → {:?} cleared but blocked", at.hit.p, candidate.point);
                     }
                 }
-                None => {
-                    blocked += 1;
-                    assert!(!clear, "{:?} → {:?} cleared but blocked", at.hit.p, candidate.point);
-                }
             }
+            assert!(blocked > 20, "{way:?}: only {blocked} blocked: the test would not catch a wrong clearance");
+            // Whatever comes near the ball's bounds is traced. Cleared: 195 of 237 the short way
+            // (86 by the one triangle of chord and end tangents alone), 213 of 239 the long way.
+            assert!(cleared as f64 > 0.7 * seen as f64, "{way:?}: {cleared} of {seen} unblocked connections cleared");
         }
-        assert!(blocked > 20, "only {blocked} blocked connections: the test would not catch a wrong clearance");
-        // Triangles from the floor to the lamp cross the board's plane, and whatever comes near the
-        // ball's bounds is traced: 86 of 237 are cleared here, nearly all in an empty room.
-        assert!(cleared as f64 > 0.3 * seen as f64, "{cleared} of {seen} unblocked connections cleared");
     }
 }

@@ -64,18 +64,26 @@ impl Series {
         s
     }
 
-    /// The longest step whose last two terms of `u` and `J` stay within `tol` times the size of
-    /// each (with the floors `floor` for components that pass through zero).
+    /// The longest step, at most `MAX_STEP`, whose last two terms of `u` and `J` stay within
+    /// `tol` times the size of each (with the floors `floor` for components that pass through
+    /// zero): `min (tol·size/|cₙ|)^(1/n)` over `n = N − 1, N`.
     fn step_limit(&self, tol: f64, floor: [f64; 2]) -> f64 {
-        // min (tol·size/|cₙ|)^(1/n) taken on logarithms: one exponential instead of four powers.
-        let log_limit = [(&self.u, floor[0]), (&self.j, floor[1])]
-            .iter()
-            .flat_map(|(c, floor)| {
-                let log_size = (tol * (c[0].abs().max(c[1].abs()) + floor)).ln();
-                [ORDER - 1, ORDER].map(|n| (log_size - c[n].abs().ln()) / n as f64)
-            })
-            .fold(f64::INFINITY, f64::min);
-        log_limit.exp()
+        // Bounds of `hⁿ` for each order, at most 1 (the root of a larger one exceeds MAX_STEP).
+        let power_bound = |n: usize| {
+            [(&self.u, floor[0]), (&self.j, floor[1])]
+                .iter()
+                .map(|(c, floor)| tol * (c[0].abs().max(c[1].abs()) + floor) / c[n].abs())
+                .fold(1.0, f64::min)
+        };
+        let (last, before) = (power_bound(ORDER), power_bound(ORDER - 1));
+        // Which root is smaller, told by integer powers (both bounds lie in [0, 1]): one root
+        // instead of one per bound.
+        let h = if before.powi(ORDER as i32) < last.powi(ORDER as i32 - 1) {
+            before.powf(1.0 / (ORDER - 1) as f64)
+        } else {
+            last.powf(1.0 / ORDER as f64)
+        };
+        h.min(MAX_STEP)
     }
 
     /// `(u, u', J, J', K, K')` a step `h` on.

@@ -128,6 +128,51 @@ pub struct Connection {
     pub solid_angle_per_area: f64,
     /// Azimuth swept from `x` to `y`: `Δφ ∈ (0, π]` the short way, `2π − Δφ` the long way.
     pub swept: f64,
+    /// Points along the ray between its ends.
+    pub waypoints: Waypoints,
+}
+
+/// Most points kept along a ray between its ends; a ray that needs more keeps none.
+const MAX_WAYPOINTS: usize = 24;
+
+/// Points along a connecting ray, in its plane (basis `x̂`, `e₂`): `(φ, u, u')` where the shots'
+/// Taylor steps ended, less than a radian of azimuth apart.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Waypoints {
+    xh: [f64; 3],
+    e2: [f64; 3],
+    /// Points kept, or `MAX_WAYPOINTS + 1` where there were too many to keep.
+    count: usize,
+    points: [[f64; 3]; MAX_WAYPOINTS],
+}
+
+/// A shot's states `(φ, u, u', J, J')` at the ends of its steps, before the last.
+struct Track {
+    count: usize,
+    states: [[f64; 5]; MAX_WAYPOINTS],
+}
+
+impl Track {
+    fn new() -> Self {
+        Self { count: 0, states: [[0.0; 5]; MAX_WAYPOINTS] }
+    }
+
+    fn push(&mut self, phi: f64, y: &[f64; 6]) {
+        if let Some(state) = self.states.get_mut(self.count) {
+            *state = [phi, y[0], y[1], y[2], y[3]];
+        }
+        self.count = (self.count + 1).min(MAX_WAYPOINTS + 1);
+    }
+
+    /// The points of the ray a Newton step `step` in `s` away from the one shot, to first order
+    /// (`∂u/∂s = J`, `∂u'/∂s = J'`), in the plane `xh`, `e2`.
+    fn waypoints(&self, step: f64, xh: [f64; 3], e2: [f64; 3]) -> Waypoints {
+        let mut points = [[0.0; 3]; MAX_WAYPOINTS];
+        for (point, [phi, u, du, j, dj]) in points.iter_mut().zip(&self.states[..self.count.min(MAX_WAYPOINTS)]) {
+            *point = [*phi, u + j * step, du + dj * step];
+        }
+        Waypoints { xh, e2, count: self.count, points }
+    }
 }
 
 impl Connection {
@@ -142,29 +187,70 @@ impl Connection {
     /// triangle can block the ray: a visibility test without tracing it.
     ///
     /// The turning angle is the sweep `Δφ` plus the change of the tangent's angle from the
-    /// outward radial direction, which stays in `(0, π)` since the ray sweeps one way. The short
-    /// way round (`Δφ ≤ π`) it therefore lies in `[0, 2π)`, and the sine of the angle from the
-    /// start tangent to the end one, about the axis the ray sweeps round (`x × t0`), is positive
-    /// exactly when the turning is below π.
+    /// outward radial direction, which stays in `(0, π)` since the ray sweeps one way. Over a
+    /// sweep `Δφ ≤ π` it therefore lies in `[0, 2π)`, and the sine of the angle from the start
+    /// tangent to the end one, about the axis the ray sweeps round, is positive exactly when the
+    /// turning is below π.
     pub fn enclosing_triangle(&self, x: [f64; 3], y: [f64; 3]) -> Option<[[f64; 3]; 3]> {
         if self.swept > PI {
             return None;
         }
-        let (t0, t1) = (self.start_tangent, self.end_tangent);
-        let axis = normalize3(&cross3(&x, &t0));
-        let sin_turn = dot3(&cross3(&t0, &t1), &axis);
-        if !(sin_turn > MIN_SIN_TURN) {
-            return None;
-        }
-        // z = x + a t0 = y − b t1, solved in the plane.
-        let chord: [f64; 3] = std::array::from_fn(|i| y[i] - x[i]);
-        let a = dot3(&cross3(&chord, &t1), &axis) / sin_turn;
-        let b = dot3(&cross3(&t0, &chord), &axis) / sin_turn;
-        if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
-            return None;
-        }
-        Some([x, std::array::from_fn(|i| x[i] + a * t0[i]), y])
+        triangle_between(self.waypoints.axis(), (x, self.start_tangent), (y, self.end_tangent))
     }
+
+    /// Triangles that together hold the ray from `x` to `y`, one for each piece between its
+    /// waypoints (each sweeping less than a radian), as [`Connection::enclosing_triangle`] bounds
+    /// the whole short way; `None` for a piece that turns by π or more, and a single `None` where
+    /// the waypoints were not kept. This bounds the long way round too.
+    pub fn enclosing_triangles(&self, x: [f64; 3], y: [f64; 3]) -> impl Iterator<Item = Option<[[f64; 3]; 3]>> + '_ {
+        let w = &self.waypoints;
+        let kept = w.count <= MAX_WAYPOINTS;
+        let inner = w.points[..w.count.min(MAX_WAYPOINTS)].iter().map(|p| w.world(p));
+        let ends = std::iter::once((x, self.start_tangent)).chain(inner).chain(std::iter::once((y, self.end_tangent)));
+        let pieces = ends.clone().zip(ends.skip(1)).map(|(a, b)| triangle_between(w.axis(), a, b));
+        let none_kept = (!kept).then_some(None);
+        none_kept.into_iter().chain(pieces.take_while(move |_| kept))
+    }
+}
+
+impl Waypoints {
+    /// The axis the ray sweeps round (its plane's normal).
+    fn axis(&self) -> [f64; 3] {
+        cross3(&self.xh, &self.e2)
+    }
+
+    /// World position and unit world tangent of the point `(φ, u, u')`: world coordinates see
+    /// the ray's direction as `(−u', u)` in the radial and azimuthal directions.
+    fn world(&self, &[phi, u, du]: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
+        let (sin, cos) = phi.sin_cos();
+        let radial: [f64; 3] = std::array::from_fn(|i| cos * self.xh[i] + sin * self.e2[i]);
+        let azimuthal: [f64; 3] = std::array::from_fn(|i| -sin * self.xh[i] + cos * self.e2[i]);
+        let position = scale3(&radial, 1.0 / u);
+        (position, normalize3(&std::array::from_fn(|i| -du * radial[i] + u * azimuthal[i])))
+    }
+}
+
+/// The triangle of the chord from `p` to `q` and the tangent lines there (unit tangents `tp`,
+/// `tq`) of a piece of ray that sweeps at most π about `axis` and bends one way: `None` where it
+/// turns by π or more, or too little to place the third corner (see
+/// [`Connection::enclosing_triangle`]).
+fn triangle_between(
+    axis: [f64; 3],
+    (p, tp): ([f64; 3], [f64; 3]),
+    (q, tq): ([f64; 3], [f64; 3]),
+) -> Option<[[f64; 3]; 3]> {
+    let sin_turn = dot3(&cross3(&tp, &tq), &axis);
+    if !(sin_turn > MIN_SIN_TURN) {
+        return None;
+    }
+    // z = p + a tp = q − b tq, solved in the plane.
+    let chord: [f64; 3] = std::array::from_fn(|i| q[i] - p[i]);
+    let a = dot3(&cross3(&chord, &tq), &axis) / sin_turn;
+    let b = dot3(&cross3(&tp, &chord), &axis) / sin_turn;
+    if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
+        return None;
+    }
+    Some([p, std::array::from_fn(|i| p[i] + a * tp[i]), q])
 }
 
 /// How one shot from `x` ended.
@@ -212,10 +298,11 @@ pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) -> Op
     };
     let mut lo = 0.0;
     let mut fine = false;
+    let mut track = Track::new();
     for _ in 0..MAX_ITERATIONS {
         let s = -slope_scale / psi.tan();
         let rtol = if fine { RTOL } else { RTOL_COARSE };
-        let next = match shoot(metric, ux, s, sweep, rtol)? {
+        let next = match shoot(metric, ux, s, sweep, rtol, &mut track)? {
             Shot::Escapes => {
                 lo = psi;
                 0.5 * (lo + hi)
@@ -231,7 +318,8 @@ pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) -> Op
                     // The step taken unconfirmed: slope and Jacobi field at `y` follow it to first
                     // order, equation (4).
                     let (du, jacobi) = (end[1] + end[3] * step, end[2] + end[4] * step);
-                    return Ends { xh, e2, sweep, psi: newton, ux, uy, du, jacobi }.connection(metric);
+                    let waypoints = track.waypoints(step, xh, e2);
+                    return Ends { xh, e2, sweep, psi: newton, ux, uy, du, jacobi, waypoints }.connection(metric);
                 }
                 // A shot's sign is trusted only well above its own integration error.
                 if f.abs() > 10.0 * rtol * uy {
@@ -277,6 +365,7 @@ struct Ends {
     uy: f64,
     du: f64,
     jacobi: f64,
+    waypoints: Waypoints,
 }
 
 impl Ends {
@@ -300,7 +389,8 @@ impl Ends {
         let t_phi = self.uy / self.du.hypot(self.uy);
         // Equation (3).
         let density = s_psi.powi(3) * stretch(self.ux) * self.uy.powi(3) / (self.ux * self.jacobi * s_sw.abs() * t_phi);
-        Some(Connection { start, start_tangent, end, end_tangent, solid_angle_per_area: density, swept: self.sweep })
+        let (solid_angle_per_area, swept, waypoints) = (density, self.sweep, self.waypoints);
+        Some(Connection { start, start_tangent, end, end_tangent, solid_angle_per_area, swept, waypoints })
     }
 }
 
@@ -340,12 +430,13 @@ fn long_guess(mass: f64, ux: f64, uy: f64, sweep: f64, sin_critical: f64) -> f64
 /// Integrates (1), (2) and (4) from `φ = 0` to `sweep` by Taylor series at relative tolerance
 /// `rtol` per step (see [`binet_taylor`]); `None` if it does not finish in `MAX_STEPS`. `K`
 /// only sizes Newton's neglected term, so it is left out of the step control.
-fn shoot(metric: &Schwarzschild, ux: f64, s: f64, sweep: f64, rtol: f64) -> Option<Shot> {
+fn shoot(metric: &Schwarzschild, ux: f64, s: f64, sweep: f64, rtol: f64, track: &mut Track) -> Option<Shot> {
     let capture = 1.0 / (2.0 * metric.mass);
     // Absolute floors keep the step rule finite where a component passes through zero.
     let floor = [1e-3 * ux, 1e-3];
     let mut y = [ux, s, 0.0, 1.0, 0.0, 0.0];
     let mut phi = 0.0;
+    track.count = 0;
     for _ in 0..MAX_STEPS {
         let remaining = sweep - phi;
         let (next, h) = binet_taylor::step(metric.mass, &y, remaining, rtol, floor);
@@ -359,6 +450,7 @@ fn shoot(metric: &Schwarzschild, ux: f64, s: f64, sweep: f64, rtol: f64) -> Opti
         if h >= remaining {
             return Some(Shot::Reaches(y));
         }
+        track.push(phi, &y);
     }
     None
 }
