@@ -3,7 +3,7 @@
 
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
-use spacetime::geodesic::connect::{connect, Connection, Way};
+use spacetime::geodesic::connect::{connect, connect_facing, Connection, Way};
 use spacetime::geodesic::plane::{trace_plane, PlaneStart, PlaneStep};
 use spacetime::tensor::{cross3, dot3, norm3, normalize3};
 use spacetime::{Integrator, Region, Schwarzschild, TraceSettings, Visit};
@@ -245,4 +245,36 @@ fn both_ways_round_lie_in_the_triangles_between_their_waypoints() {
         // The long way winds round the hole in several pieces.
         assert!(way == Way::Short || pieces > 3 * bounded, "{pieces} pieces for {bounded} rays");
     }
+}
+
+/// Joining a one-sided surface drops exactly the rays that reach it from behind: every ray it
+/// keeps is the one `connect` finds, and every ray arriving from the front is kept.
+#[test]
+fn rays_reaching_a_one_sided_surface_from_behind_are_dropped() {
+    let hole = Schwarzschild::new(0.3);
+    let mut state = 0x0123_4567_89ab_cdef_u64;
+    let mut uniform = move || {
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut dropped, mut behind) = (0, 0);
+    for _ in 0..300 {
+        let mut in_room = || [12.0 * uniform() - 6.0, 8.0 * uniform() - 4.0, 16.0 * uniform() - 8.0];
+        let (x, y) = (in_room(), in_room());
+        let normal = normalize3(&[uniform() - 0.5, uniform() - 0.5, uniform() - 0.5]);
+        for way in Way::BOTH {
+            let Some(full) = connect(&hole, x, y, way) else { continue };
+            let from_behind = dot3(&normal, &full.end_tangent) > 0.0;
+            behind += usize::from(from_behind);
+            match connect_facing(&hole, x, y, way, Some(normal)) {
+                Some(kept) => assert_eq!(kept, full, "{x:?} → {y:?} {way:?}"),
+                None => {
+                    dropped += 1;
+                    assert!(from_behind, "{x:?} → {y:?} {way:?}: a ray from the front was dropped");
+                }
+            }
+        }
+    }
+    // Half the rays arrive from behind; all but those within the margin of grazing are dropped.
+    assert!(behind > 200 && dropped as f64 > 0.95 * behind as f64, "{dropped} of {behind} dropped");
 }

@@ -21,9 +21,15 @@
 //! A ray reaching a light by BSDF sampling is weighted against the strategy of its own way round,
 //! told by the azimuth it swept. Rays that wound round the hole once or more are never sampled
 //! here; BSDF sampling finds them, and their MIS weight is 1 (Veach 1997, ch. 9: a strategy's
-//! weight only counts where that strategy can produce the path). Each connection is traced
-//! against the scene like any ray, so occluders and capture by the hole are seen exactly as
-//! BSDF-sampled rays see them.
+//! weight only counts where that strategy can produce the path).
+//!
+//! Visibility: a connection lies inside the triangle of its chord and its end tangents, or the
+//! short way round and in any case inside the triangles between its waypoints
+//! ([`Connection::enclosing_triangle`]); where no object but the two it joins comes within ε of
+//! them, nothing can block it. Any other connection is traced against the scene like any ray,
+//! so occluders are seen exactly as BSDF-sampled rays see them. A light that emits from one
+//! side is joined only by rays that reach that side (`connect_facing` drops the others before
+//! refining them).
 //!
 //! Kerr and the Ellis wormhole have no connection solver: they render with BSDF sampling alone.
 
@@ -97,7 +103,8 @@ impl LightPoint {
     /// Joins the shading point of `at` to this point by the ray going `way` round the hole;
     /// `None` if there is none or it carries nothing.
     pub(super) fn join(&self, propagator: &Propagator, at: &Arrival, way: Way) -> Option<Candidate> {
-        let connection = propagator.connect(at.hit.p, self.point, way)?;
+        let facing = (!self.emission.two_sided).then_some(self.normal);
+        let connection = propagator.connect(at.hit.p, self.point, way, facing)?;
         let normal_local = propagator.local_normal(at.region, self.point, self.normal);
         let emitted = self.emission.radiance_towards(normal_local, -Vec3::from_array(connection.end));
         let pdf = way_probability(way) * solid_angle_density(self.density, self.normal, &connection);
@@ -186,7 +193,7 @@ pub(super) fn emitter_pdf(world: &World, propagator: &Propagator, from: Vec3, ar
     if choice == 0.0 {
         return None;
     }
-    let connection = propagator.connect(from, arrival.hit.p, way)?;
+    let connection = propagator.connect(from, arrival.hit.p, way, None)?;
     let area = world.object(arrival.region, arrival.object).shape.area();
     let pdf = way_probability(way) * solid_angle_density(choice / area, arrival.hit.ng, &connection);
     Some(pdf).filter(|p| *p > 0.0 && p.is_finite())

@@ -82,6 +82,9 @@ const UTOL: f64 = 1e-6;
 /// and `x`): no connection is returned.
 const MIN_SIN_SWEEP: f64 = 1e-9;
 const MAX_ITERATIONS: u32 = 100;
+/// A ray is dropped by [`connect_facing`] when it meets the surface from behind by more than
+/// this cosine: ten times the error of the direction it is judged by.
+const FACING_MARGIN: f64 = 1e-2;
 /// Below this sine of its turning angle a ray's end tangents meet too far off to bound it.
 const MIN_SIN_TURN: f64 = 1e-9;
 const MAX_STEPS: u32 = 10_000;
@@ -267,6 +270,21 @@ enum Shot {
 /// (both outside the horizon), or `None` where there is none (it would be captured, `y` lies on
 /// the line through the centre and `x`, or, the long way, `x` lies inside the photon sphere).
 pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) -> Option<Connection> {
+    connect_facing(metric, x, y, way, None)
+}
+
+/// [`connect`] to a point `y` on a surface that only the rays reaching it from the side of its
+/// world normal `facing` matter for (a one-sided emitter): a ray found arriving from the other
+/// side is dropped as soon as its direction is known to about 10⁻³, before the shots that
+/// would refine it (arrival directions within [`FACING_MARGIN`] of the surface are kept and
+/// refined).
+pub fn connect_facing(
+    metric: &Schwarzschild,
+    x: [f64; 3],
+    y: [f64; 3],
+    way: Way,
+    facing: Option<[f64; 3]>,
+) -> Option<Connection> {
     let (rx, ry) = (norm3(&x), norm3(&y));
     let horizon = 2.0 * metric.mass;
     if !(rx > horizon && ry > horizon) {
@@ -329,6 +347,11 @@ pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) -> Op
                         hi = psi;
                     }
                 }
+                if remaining <= FINE_GATE * uy
+                    && facing.is_some_and(|n| arrives_behind(n, xh, e2, sweep, uy, end[1] + end[3] * step))
+                {
+                    return None;
+                }
                 fine |= remaining <= FINE_GATE * uy;
                 if newton > lo && newton < hi {
                     newton
@@ -343,6 +366,16 @@ pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) -> Op
         psi = next;
     }
     None
+}
+
+/// Whether a ray arriving at `u_y` after sweeping `sweep` in the plane `xh`, `e2` with slope `u'`
+/// meets a surface of world normal `n` from behind, by more than [`FACING_MARGIN`] in the cosine.
+fn arrives_behind(n: [f64; 3], xh: [f64; 3], e2: [f64; 3], sweep: f64, uy: f64, du: f64) -> bool {
+    let (sin, cos) = sweep.sin_cos();
+    // World coordinates see the direction of travel as (−u', u) in the radial and azimuthal directions.
+    let tangent: [f64; 3] =
+        std::array::from_fn(|i| -du * (cos * xh[i] + sin * e2[i]) + uy * (cos * e2[i] - sin * xh[i]));
+    dot3(&n, &tangent) > FACING_MARGIN * norm3(&tangent)
 }
 
 /// Newton's step in `s` from a shot that ended in `end` missing `u_y` by `f`, as far as `ψ` can
