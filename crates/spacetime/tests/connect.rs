@@ -149,6 +149,30 @@ fn degenerate_pairs_have_no_connection() {
     assert!(connect(&hole, [2.5, 0.0, 0.0], [0.0, 10.0, 0.0], Way::Long).is_none());
 }
 
+/// Uniform numbers in `[0, 1)` from a seeded 64-bit linear congruential generator.
+fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A uniform point of the black-hole room's box (`scenes/room-black-hole.toml`).
+fn in_room(uniform: &mut impl FnMut() -> f64) -> [f64; 3] {
+    [12.0 * uniform() - 6.0, 8.0 * uniform() - 4.0, 16.0 * uniform() - 8.0]
+}
+
+/// `n` random pairs of points in the black-hole room (M = 0.3), then the strong-bending pairs of
+/// [`PAIRS`] (M = 1).
+fn test_pairs(seed: u64, n: usize) -> Vec<(Schwarzschild, [f64; 3], [f64; 3])> {
+    let mut uniform = uniform(seed);
+    let room = Schwarzschild::new(0.3);
+    let mut pairs: Vec<_> = (0..n).map(|_| (room, in_room(&mut uniform), in_room(&mut uniform))).collect();
+    pairs.extend(PAIRS.map(|(x, y)| (Schwarzschild::new(1.0), x, y)));
+    pairs
+}
+
 /// Points of the ray leaving `x` along the static-frame direction `n`, every tenth of a step,
 /// until it has swept `sweep` about the centre.
 fn ray_points(hole: &Schwarzschild, x: [f64; 3], n: [f64; 3], sweep: f64) -> Vec<[f64; 3]> {
@@ -186,17 +210,8 @@ fn outside(p: [f64; 3], [a, b, c]: [[f64; 3]; 3]) -> f64 {
 /// black-hole room and the strong-bending pairs above (M = 1).
 #[test]
 fn the_short_way_round_lies_in_the_triangle_of_its_chord_and_end_tangents() {
-    let room = Schwarzschild::new(0.3);
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut uniform = move || {
-        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut in_room = || [12.0 * uniform() - 6.0, 8.0 * uniform() - 4.0, 16.0 * uniform() - 8.0];
-    let mut pairs: Vec<_> = (0..200).map(|_| (room, in_room(), in_room())).collect();
-    pairs.extend(PAIRS.map(|(x, y)| (Schwarzschild::new(1.0), x, y)));
     let (mut tried, mut bounded) = (0, 0);
-    for (hole, x, y) in pairs {
+    for (hole, x, y) in test_pairs(0x2545_f491_4f6c_dd1d, 200) {
         let Some(c) = connect(&hole, x, y, Way::Short) else { continue };
         tried += 1;
         let Some(triangle) = c.enclosing_triangle(x, y) else { continue };
@@ -217,15 +232,7 @@ fn the_short_way_round_lies_in_the_triangle_of_its_chord_and_end_tangents() {
 /// round: every traced point lies in one of them.
 #[test]
 fn both_ways_round_lie_in_the_triangles_between_their_waypoints() {
-    let room = Schwarzschild::new(0.3);
-    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut uniform = move || {
-        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut in_room = || [12.0 * uniform() - 6.0, 8.0 * uniform() - 4.0, 16.0 * uniform() - 8.0];
-    let mut pairs: Vec<_> = (0..100).map(|_| (room, in_room(), in_room())).collect();
-    pairs.extend(PAIRS.map(|(x, y)| (Schwarzschild::new(1.0), x, y)));
+    let pairs = test_pairs(0x9e37_79b9_7f4a_7c15, 100);
     for way in Way::BOTH {
         let (mut tried, mut bounded, mut pieces) = (0, 0, 0);
         for &(hole, x, y) in &pairs {
@@ -252,15 +259,10 @@ fn both_ways_round_lie_in_the_triangles_between_their_waypoints() {
 #[test]
 fn rays_reaching_a_one_sided_surface_from_behind_are_dropped() {
     let hole = Schwarzschild::new(0.3);
-    let mut state = 0x0123_4567_89ab_cdef_u64;
-    let mut uniform = move || {
-        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = uniform(0x0123_4567_89ab_cdef);
     let (mut dropped, mut behind) = (0, 0);
     for _ in 0..300 {
-        let mut in_room = || [12.0 * uniform() - 6.0, 8.0 * uniform() - 4.0, 16.0 * uniform() - 8.0];
-        let (x, y) = (in_room(), in_room());
+        let (x, y) = (in_room(&mut uniform), in_room(&mut uniform));
         let normal = normalize3(&[uniform() - 0.5, uniform() - 0.5, uniform() - 0.5]);
         for way in Way::BOTH {
             let Some(full) = connect(&hole, x, y, way) else { continue };
