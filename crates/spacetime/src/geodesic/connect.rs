@@ -213,11 +213,11 @@ impl Connection {
     /// the whole short way; `None` for a piece that turns by π or more, and a single `None` where
     /// the waypoints were not kept. This bounds the long way round too.
     pub fn enclosing_triangles(&self, x: [f64; 3], y: [f64; 3]) -> impl Iterator<Item = Option<[[f64; 3]; 3]>> + '_ {
-        let w = &self.waypoints;
+        let (w, axis) = (&self.waypoints, self.waypoints.axis());
         let kept = w.count <= MAX_WAYPOINTS;
         let inner = w.points[..w.count.min(MAX_WAYPOINTS)].iter().map(|p| w.world(p));
         let ends = std::iter::once((x, self.start_tangent)).chain(inner).chain(std::iter::once((y, self.end_tangent)));
-        let pieces = ends.clone().zip(ends.skip(1)).map(|(a, b)| triangle_between(w.axis(), a, b));
+        let pieces = ends.clone().zip(ends.skip(1)).map(move |(a, b)| triangle_between(axis, a, b));
         let none_kept = (!kept).then_some(None);
         none_kept.into_iter().chain(pieces.take_while(move |_| kept))
     }
@@ -232,11 +232,35 @@ impl Waypoints {
     /// World position and unit world tangent of the point `(φ, u, u')`: world coordinates see
     /// the ray's direction as `(−u', u)` in the radial and azimuthal directions.
     fn world(&self, &[phi, u, du]: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
+        let directions = PlaneDirections::at(&self.xh, &self.e2, phi);
+        (scale3(&directions.radial, 1.0 / u), directions.world_tangent(u, du))
+    }
+}
+
+/// The radial and azimuthal unit vectors at azimuth `φ` of the plane with basis `x̂`, `e₂`.
+struct PlaneDirections {
+    radial: [f64; 3],
+    azimuthal: [f64; 3],
+}
+
+impl PlaneDirections {
+    fn at(xh: &[f64; 3], e2: &[f64; 3], phi: f64) -> Self {
         let (sin, cos) = phi.sin_cos();
-        let radial: [f64; 3] = std::array::from_fn(|i| cos * self.xh[i] + sin * self.e2[i]);
-        let azimuthal: [f64; 3] = std::array::from_fn(|i| -sin * self.xh[i] + cos * self.e2[i]);
-        let position = scale3(&radial, 1.0 / u);
-        (position, normalize3(&std::array::from_fn(|i| -du * radial[i] + u * azimuthal[i])))
+        Self {
+            radial: std::array::from_fn(|i| cos * xh[i] + sin * e2[i]),
+            azimuthal: std::array::from_fn(|i| -sin * xh[i] + cos * e2[i]),
+        }
+    }
+
+    /// The unit vector with radial and azimuthal components in the ratio `dr : dphi`.
+    fn along(&self, dr: f64, dphi: f64) -> [f64; 3] {
+        normalize3(&std::array::from_fn(|i| dr * self.radial[i] + dphi * self.azimuthal[i]))
+    }
+
+    /// Unit world tangent of the ray at `(u, u')`: world coordinates see its direction of travel
+    /// as `(−u', u)` in the radial and azimuthal directions.
+    fn world_tangent(&self, u: f64, du: f64) -> [f64; 3] {
+        self.along(-du, u)
     }
 }
 
@@ -378,11 +402,7 @@ pub fn connect_facing(
 /// Whether a ray arriving at `u_y` after sweeping `sweep` in the plane `xh`, `e2` with slope `u'`
 /// meets a surface of world normal `n` from behind, by more than [`FACING_MARGIN`] in the cosine.
 fn arrives_behind(n: [f64; 3], xh: [f64; 3], e2: [f64; 3], sweep: f64, uy: f64, du: f64) -> bool {
-    let (sin, cos) = sweep.sin_cos();
-    // World coordinates see the direction of travel as (−u', u) in the radial and azimuthal directions.
-    let tangent: [f64; 3] =
-        std::array::from_fn(|i| -du * (cos * xh[i] + sin * e2[i]) + uy * (cos * e2[i] - sin * xh[i]));
-    dot3(&n, &tangent) > FACING_MARGIN * norm3(&tangent)
+    dot3(&n, &PlaneDirections::at(&xh, &e2, sweep).world_tangent(uy, du)) > FACING_MARGIN
 }
 
 /// Newton's step in `s` from a shot that ended in `end` missing `u_y` by `f`, as far as `ψ` can
@@ -415,20 +435,18 @@ impl Ends {
         }
         let stretch = |u: f64| 1.0 / (1.0 - 2.0 * metric.mass * u).sqrt();
         let (s_psi, c_psi) = self.psi.sin_cos();
-        let (s_sw, c_sw) = self.sweep.sin_cos();
+        let sin_sweep = self.sweep.sin();
         let start = std::array::from_fn(|i| c_psi * self.xh[i] + s_psi * self.e2[i]);
         let start_tangent =
             normalize3(&std::array::from_fn(|i| c_psi / stretch(self.ux) * self.xh[i] + s_psi * self.e2[i]));
-        // Radial and azimuthal unit vectors at y, in the plane.
-        let radial: [f64; 3] = std::array::from_fn(|i| c_sw * self.xh[i] + s_sw * self.e2[i]);
-        let azimuthal: [f64; 3] = std::array::from_fn(|i| -s_sw * self.xh[i] + c_sw * self.e2[i]);
-        // Static frame: (n_r, n_φ) ∝ (−σ u', u); world coordinates: (−u', u).
-        let along = |dr: f64| normalize3(&std::array::from_fn(|i| dr * radial[i] + self.uy * azimuthal[i]));
-        let end = along(-stretch(self.uy) * self.du);
-        let end_tangent = along(-self.du);
+        let at_y = PlaneDirections::at(&self.xh, &self.e2, self.sweep);
+        // Static frame: (n_r, n_φ) ∝ (−σ u', u).
+        let end = at_y.along(-stretch(self.uy) * self.du, self.uy);
+        let end_tangent = at_y.world_tangent(self.uy, self.du);
         let t_phi = self.uy / self.du.hypot(self.uy);
         // Equation (3).
-        let density = s_psi.powi(3) * stretch(self.ux) * self.uy.powi(3) / (self.ux * self.jacobi * s_sw.abs() * t_phi);
+        let density =
+            s_psi.powi(3) * stretch(self.ux) * self.uy.powi(3) / (self.ux * self.jacobi * sin_sweep.abs() * t_phi);
         let (solid_angle_per_area, swept, waypoints) = (density, self.sweep, self.waypoints);
         Some(Connection { start, start_tangent, end, end_tangent, solid_angle_per_area, swept, waypoints })
     }
