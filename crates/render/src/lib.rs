@@ -20,6 +20,8 @@ pub mod scene;
 pub mod settings;
 pub mod shape;
 pub mod sky;
+#[cfg(test)]
+mod test_scenes;
 pub mod texture;
 pub mod transform;
 pub mod world;

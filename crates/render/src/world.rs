@@ -12,6 +12,11 @@ use crate::shape::{Shape, SurfaceHit};
 use crate::sky::Sky;
 use spacetime::Region;
 
+/// A corner of a triangle lies on a surface when it is within this fraction of its coordinates'
+/// size of the surface's plane: rounding, far below the offset (`OFFSET_EPSILON`, 10⁻⁹ of the
+/// coordinates) that starts a ray off the surface it leaves.
+const ON_SURFACE: f64 = 1e-12;
+
 /// Light emitted by a surface: constant radiance on its outward side (both sides if
 /// `two_sided`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -145,18 +150,13 @@ impl World {
     }
 
     /// Whether no object of `region` comes within `margin` of the triangle `corners`, except that
-    /// each `(object, corner)` of `ends` may touch it at that corner alone: a ray known to lie
-    /// inside the triangle, from a point on one object to a point on another, is then unblocked.
-    ///
-    /// Conservative: only flat shapes can be cleared (the triangle must keep strictly to one side
-    /// of their plane); any other shape whose bounds reach the triangle's counts as in the way.
-    pub fn triangle_is_clear(
-        &self,
-        region: Region,
-        corners: [Vec3; 3],
-        ends: [(usize, usize); 2],
-        margin: f64,
-    ) -> bool {
+    /// a corner flagged in `touching` may come as close as it likes to a surface, or lie on it,
+    /// from the side the rest of the triangle keeps to: a ray known to lie inside the triangle,
+    /// leaving a surface at one corner or arriving at one, is then unblocked. (A flagged corner
+    /// just off a surface on the far side from the rest, like the origin of a ray that leaves its
+    /// surface's offset point straight back into it, or a wall beside the one a ray leaves, does
+    /// not count as touching: the ray crosses that surface.)
+    pub fn triangle_is_clear(&self, region: Region, corners: [Vec3; 3], touching: [bool; 3], margin: f64) -> bool {
         let r = self.region(region);
         let reach = Vec3::splat(margin);
         let [a, b, c] = corners;
@@ -167,9 +167,13 @@ impl World {
                 return false;
             }
             let Some((point, normal)) = r.objects[i].shape.supporting_plane() else { return true };
-            let touching = ends.iter().find(|(object, _)| *object == i).map(|&(_, corner)| corner);
-            let mut heights = (0..3).filter(|&k| Some(k) != touching).map(|k| (corners[k] - point).dot(normal));
-            !(heights.clone().all(|h| h > margin) || heights.all(|h| h < -margin))
+            let heights = corners.map(|corner| (corner - point).dot(normal));
+            let clear_above = |k: usize| {
+                let gap = if touching[k] { -ON_SURFACE * corners[k].abs().max_element().max(1.0) } else { margin };
+                (heights[k] > gap, -heights[k] > gap)
+            };
+            let sides = [clear_above(0), clear_above(1), clear_above(2)];
+            !(sides.iter().all(|s| s.0) || sides.iter().all(|s| s.1))
         };
         !r.bvh.any_near(&query, in_the_way)
     }

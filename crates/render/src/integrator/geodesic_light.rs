@@ -45,9 +45,6 @@ use spacetime::geodesic::connect::{Connection, Way};
 /// many chord tolerances ε of it (the chord test places hits to within ~ε of the curve).
 const ARRIVAL_TOLERANCE: f64 = 64.0;
 
-/// No object's index: an end of a connection that lies on no surface.
-const NOTHING: usize = usize::MAX;
-
 /// Probability that a light point is also joined the long way round (the short way always is).
 /// Long-way rays wind close to the photon sphere, so their connection and visibility ray cost
 /// several times the short way's; but their images of a light are so compressed that even a
@@ -140,8 +137,8 @@ impl Candidate {
     fn is_clear(&self, world: &World, propagator: &Propagator, at: &Arrival) -> bool {
         let (x, y) = (at.hit.p.to_array(), self.point.to_array());
         let clear = |triangle: [[f64; 3]; 3], first: bool, last: bool| {
-            let ends = [(if first { at.object } else { NOTHING }, 0), (if last { self.object } else { NOTHING }, 2)];
-            world.triangle_is_clear(at.region, triangle.map(Vec3::from_array), ends, propagator.epsilon())
+            let touching = [first, false, last];
+            world.triangle_is_clear(at.region, triangle.map(Vec3::from_array), touching, propagator.epsilon())
         };
         if self.connection.enclosing_triangle(x, y).is_some_and(|triangle| clear(triangle, true, true)) {
             return true;
@@ -208,47 +205,18 @@ fn solid_angle_density(area_density: f64, normal: Vec3, connection: &Connection)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::Material;
     use crate::settings::Intersection;
-    use crate::shape::Shape;
-    use crate::sky::Sky;
-    use crate::texture::Texture;
-    use crate::transform::Transform;
-    use crate::world::Object;
+    use crate::test_scenes::{floor_lamp_board_ball, uniform};
     use spacetime::{Region, Schwarzschild, Spacetime};
-
-    /// A floor and a ceiling lamp round a hole of mass 0.3, with a flat board and a ball in the
-    /// way of some connections.
-    fn room() -> World {
-        let t = Transform::identity();
-        let rectangle = |corner: [f64; 3], u: [f64; 3], v: [f64; 3]| {
-            Shape::rectangle(Vec3::from_array(corner), Vec3::from_array(u), Vec3::from_array(v), &t).unwrap()
-        };
-        let object = |shape: Shape, emission: Option<Emission>| Object { shape, material: 0, emission };
-        let lamp = Emission { radiance: Rgb::ONE, two_sided: false };
-        let objects = vec![
-            object(rectangle([-6.0, -4.0, 8.0], [12.0, 0.0, 0.0], [0.0, 0.0, -16.0]), None),
-            object(rectangle([-2.5, 3.98, -2.5], [5.0, 0.0, 0.0], [0.0, 0.0, 5.0]), Some(lamp)),
-            object(rectangle([1.0, 0.0, 2.0], [3.0, 0.0, 0.0], [0.0, 0.0, -4.0]), None),
-            object(Shape::sphere(Vec3::new(-3.0, -2.0, 3.0), 1.0, &t).unwrap(), None),
-        ];
-        let black = || Sky::Constant(Rgb::ZERO);
-        let materials = vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.5)) }];
-        World::new(materials, (objects, black()), (Vec::new(), black()))
-    }
 
     /// The triangle tests never clear a connection that tracing finds blocked, and they clear a
     /// good part of the others, either way round, with the same frequency shift.
     #[test]
     fn connections_cleared_by_their_triangles_are_seen_by_tracing() {
-        let world = room();
+        let world = floor_lamp_board_ball();
         let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
         let propagator = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
-        let mut state = 7_u64;
-        let mut uniform = move || {
-            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut uniform = uniform(7);
         let eye = Vec3::new(0.5, 3.0, 7.0);
         for way in Way::BOTH {
             let (mut cleared, mut seen, mut blocked) = (0, 0, 0);

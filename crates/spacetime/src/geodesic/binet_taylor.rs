@@ -87,15 +87,7 @@ impl Series {
                 .map(|(c, floor)| tol * (c[0].abs().max(c[1].abs()) + floor) / c[n].abs())
                 .fold(1.0, f64::min)
         };
-        let (last, before) = (power_bound(ORDER), power_bound(ORDER - 1));
-        // Which root is smaller, told by integer powers (both bounds lie in [0, 1]): one root
-        // instead of one per bound.
-        let h = if before.powi(ORDER as i32) < last.powi(ORDER as i32 - 1) {
-            before.powf(1.0 / (ORDER - 1) as f64)
-        } else {
-            last.powf(1.0 / ORDER as f64)
-        };
-        h.min(MAX_STEP)
+        shorter_root(power_bound(ORDER - 1), power_bound(ORDER))
     }
 
     /// `(u, u', J, J', K, K')` a step `h` on.
@@ -107,6 +99,16 @@ impl Series {
     }
 }
 
+/// The step `h ≤ 1` that keeps both `h^(N−1) ≤ before` and `h^N ≤ last` (bounds in `[0, 1]`):
+/// which root is smaller is told by integer powers, so only one root is taken.
+fn shorter_root(before: f64, last: f64) -> f64 {
+    if before.powi(ORDER as i32) < last.powi(ORDER as i32 - 1) {
+        before.powf(1.0 / (ORDER - 1) as f64)
+    } else {
+        last.powf(1.0 / ORDER as f64)
+    }
+}
+
 /// A polynomial and its derivative at `h`, by Horner's rule.
 fn value_and_slope(c: &[f64; ORDER + 1], h: f64) -> (f64, f64) {
     let (mut value, mut slope) = (c[ORDER], 0.0);
@@ -115,6 +117,55 @@ fn value_and_slope(c: &[f64; ORDER + 1], h: f64) -> (f64, f64) {
         value = value * h + c[n];
     }
     (value, slope)
+}
+
+/// A step of the orbit `u'' = −u + 3Mu²` alone, as the in-plane tracer takes it for the rays of
+/// a render: the Taylor polynomial about the step's start is the state anywhere inside it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OrbitStep {
+    u: [f64; ORDER + 1],
+    h: f64,
+}
+
+impl OrbitStep {
+    /// The step from `(u, u')` of at most `h_max` for mass `mass`, as long as the last two terms
+    /// of its series stay within `tol` of the larger of `|u|` and `|u'|`.
+    pub fn new(mass: f64, u: f64, du: f64, h_max: f64, tol: f64) -> Self {
+        let m3 = 3.0 * mass;
+        let mut c = [0.0; ORDER + 1];
+        [c[0], c[1]] = [u, du];
+        for n in 0..ORDER - 1 {
+            let uu: f64 = (0..=n).map(|i| c[i] * c[n - i]).sum();
+            c[n + 2] = (-c[n] + m3 * uu) * RECIPROCALS[n];
+        }
+        let size = tol * u.abs().max(du.abs());
+        let bound = |n: usize| (size / c[n].abs()).min(1.0);
+        let h = shorter_root(bound(ORDER - 1), bound(ORDER)).min(MAX_STEP).min(h_max);
+        Self { u: c, h }
+    }
+
+    /// The same polynomial over the first fraction `theta` of the step only.
+    pub fn cut(&self, theta: f64) -> Self {
+        Self { h: theta * self.h, ..*self }
+    }
+
+    pub fn h(&self) -> f64 {
+        self.h
+    }
+
+    /// `(u, du/dφ)` at fraction `θ ∈ [0, 1]` of the step.
+    #[inline]
+    pub fn at(&self, theta: f64) -> [f64; 2] {
+        let (value, slope) = value_and_slope(&self.u, theta * self.h);
+        [value, slope]
+    }
+
+    /// `u` at fraction `θ` of the step, by Horner's rule.
+    #[inline]
+    pub fn u(&self, theta: f64) -> f64 {
+        let x = theta * self.h;
+        self.u.iter().rev().fold(0.0, |value, c| value * x + c)
+    }
 }
 
 /// One step from `y` of at most `h_max`, at relative tolerance `tol` (absolute floors `floor`

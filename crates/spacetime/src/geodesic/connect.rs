@@ -57,6 +57,7 @@
 //! which is `1/d²` in flat space (`J = sin φ`, law of sines).
 
 use super::binet_taylor;
+use super::tangent_triangle::tangent_triangle;
 use crate::metric::Schwarzschild;
 use crate::tensor::{cross3, dot3, norm3, normalize3, scale3};
 use std::f64::consts::PI;
@@ -92,8 +93,6 @@ const MAX_ITERATIONS: u32 = 100;
 /// A ray is dropped by [`connect_facing`] when it meets the surface from behind by more than
 /// this cosine: ten times the error of the direction it is judged by.
 const FACING_MARGIN: f64 = 1e-2;
-/// Below this sine of its turning angle a ray's end tangents meet too far off to bound it.
-const MIN_SIN_TURN: f64 = 1e-9;
 const MAX_STEPS: u32 = 10_000;
 
 /// Which of the two rays that go round the centre less than once.
@@ -187,25 +186,14 @@ impl Track {
 
 impl Connection {
     /// A triangle `[x, z, y]` that holds the whole ray from `x` to `y`, or `None` where the ray
-    /// goes the long way round or turns by π or more (or too little to place `z`).
-    ///
-    /// In world coordinates the ray is the plane curve `r = 1/u(φ)`, whose curvature
-    /// `u³(u + u'')/(u² + u'²)^{3/2} = 3Mu⁵/(u² + u'²)^{3/2}` (by (1)) is positive: it bends towards
-    /// the centre all along. A plane arc that bends one way and turns by less than π lies on one
-    /// side of its chord and of the tangent lines at both ends, so inside the triangle they bound,
-    /// whose third corner `z` is where the end tangents meet. Nothing that stays clear of the
-    /// triangle can block the ray: a visibility test without tracing it.
-    ///
-    /// The turning angle is the sweep `Δφ` plus the change of the tangent's angle from the
-    /// outward radial direction, which stays in `(0, π)` since the ray sweeps one way. Over a
-    /// sweep `Δφ ≤ π` it therefore lies in `[0, 2π)`, and the sine of the angle from the start
-    /// tangent to the end one, about the axis the ray sweeps round, is positive exactly when the
-    /// turning is below π.
+    /// goes the long way round or turns by π or more (or too little to place `z`): the ray bends
+    /// towards the centre all along, so the triangle of its chord and end tangents holds it
+    /// ([`tangent_triangle`]), and nothing that stays clear of the triangle can block it.
     pub fn enclosing_triangle(&self, x: [f64; 3], y: [f64; 3]) -> Option<[[f64; 3]; 3]> {
         if self.swept > PI {
             return None;
         }
-        triangle_between(self.waypoints.axis(), (x, self.start_tangent), (y, self.end_tangent))
+        tangent_triangle(self.waypoints.axis(), (x, self.start_tangent), (y, self.end_tangent))
     }
 
     /// Triangles that together hold the ray from `x` to `y`, one for each piece between its
@@ -217,7 +205,7 @@ impl Connection {
         let kept = w.count <= MAX_WAYPOINTS;
         let inner = w.points[..w.count.min(MAX_WAYPOINTS)].iter().map(|p| w.world(p));
         let ends = std::iter::once((x, self.start_tangent)).chain(inner).chain(std::iter::once((y, self.end_tangent)));
-        let pieces = ends.clone().zip(ends.skip(1)).map(move |(a, b)| triangle_between(axis, a, b));
+        let pieces = ends.clone().zip(ends.skip(1)).map(move |(a, b)| tangent_triangle(axis, a, b));
         let none_kept = (!kept).then_some(None);
         none_kept.into_iter().chain(pieces.take_while(move |_| kept))
     }
@@ -262,29 +250,6 @@ impl PlaneDirections {
     fn world_tangent(&self, u: f64, du: f64) -> [f64; 3] {
         self.along(-du, u)
     }
-}
-
-/// The triangle of the chord from `p` to `q` and the tangent lines there (unit tangents `tp`,
-/// `tq`) of a piece of ray that sweeps at most π about `axis` and bends one way: `None` where it
-/// turns by π or more, or too little to place the third corner (see
-/// [`Connection::enclosing_triangle`]).
-fn triangle_between(
-    axis: [f64; 3],
-    (p, tp): ([f64; 3], [f64; 3]),
-    (q, tq): ([f64; 3], [f64; 3]),
-) -> Option<[[f64; 3]; 3]> {
-    let sin_turn = dot3(&cross3(&tp, &tq), &axis);
-    if !(sin_turn > MIN_SIN_TURN) {
-        return None;
-    }
-    // z = p + a tp = q − b tq, solved in the plane.
-    let chord: [f64; 3] = std::array::from_fn(|i| q[i] - p[i]);
-    let a = dot3(&cross3(&chord, &tq), &axis) / sin_turn;
-    let b = dot3(&cross3(&tp, &chord), &axis) / sin_turn;
-    if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
-        return None;
-    }
-    Some([p, std::array::from_fn(|i| p[i] + a * tp[i]), q])
 }
 
 /// How one shot from `x` ended.

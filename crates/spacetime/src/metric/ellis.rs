@@ -183,6 +183,10 @@ impl PlaneMetric for Ellis {
         0.5 * (1.0 / u + self.throat * self.throat * u)
     }
 
+    fn world_radius_slope(&self, u: f64) -> f64 {
+        0.5 * (self.throat * self.throat - 1.0 / (u * u))
+    }
+
     fn u_of_world_radius(&self, rho: f64) -> Option<f64> {
         (rho >= self.throat).then(|| 1.0 / self.isotropic_radius(((rho - self.throat) * (rho + self.throat)).sqrt()))
     }

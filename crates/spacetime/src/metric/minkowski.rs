@@ -56,6 +56,10 @@ impl PlaneMetric for Minkowski {
         1.0 / u
     }
 
+    fn world_radius_slope(&self, u: f64) -> f64 {
+        -1.0 / (u * u)
+    }
+
     fn u_of_world_radius(&self, rho: f64) -> Option<f64> {
         (rho > 0.0).then(|| 1.0 / rho)
     }

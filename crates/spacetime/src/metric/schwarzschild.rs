@@ -77,6 +77,20 @@ impl PlaneMetric for Schwarzschild {
         1.0 / u
     }
 
+    fn world_radius_slope(&self, u: f64) -> f64 {
+        -1.0 / (u * u)
+    }
+
+    /// The curvature of a ray in world coordinates is `3Mu⁵/(u² + u'²)^{3/2} ≥ 0`
+    /// ([`connect`](crate::geodesic::connect) equation (1)).
+    fn bends_towards_centre(&self) -> bool {
+        true
+    }
+
+    fn schwarzschild_mass(&self) -> Option<f64> {
+        Some(self.mass)
+    }
+
     fn u_of_world_radius(&self, rho: f64) -> Option<f64> {
         (rho > 0.0).then(|| 1.0 / rho)
     }
