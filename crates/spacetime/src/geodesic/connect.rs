@@ -57,6 +57,7 @@
 //! which is `1/d²` in flat space (`J = sin φ`, law of sines).
 
 use super::binet_taylor;
+use super::short_way_table::short_way_table;
 use super::tangent_triangle::tangent_triangle;
 use crate::metric::Schwarzschild;
 use crate::tensor::{cross3, dot3, norm3, normalize3, scale3};
@@ -281,6 +282,19 @@ pub fn connect_facing(
     way: Way,
     facing: Option<[f64; 3]>,
 ) -> Option<Connection> {
+    solve(metric, x, y, way, facing, true)
+}
+
+/// [`connect_facing`], starting the short way from the tabulated slope where `tabulated` and the
+/// table covers the ends, else from [`first_guess`].
+pub(super) fn solve(
+    metric: &Schwarzschild,
+    x: [f64; 3],
+    y: [f64; 3],
+    way: Way,
+    facing: Option<[f64; 3]>,
+    tabulated: bool,
+) -> Option<Connection> {
     let (rx, ry) = (norm3(&x), norm3(&y));
     let horizon = 2.0 * metric.mass;
     if !(rx > horizon && ry > horizon) {
@@ -295,8 +309,16 @@ pub fn connect_facing(
     let e2 = normalize3(&std::array::from_fn(|i| yh[i] - cos * xh[i]));
     let (ux, uy) = (1.0 / rx, 1.0 / ry);
     let slope_scale = ux * (1.0 - 2.0 * metric.mass * ux).sqrt();
+    let mut fine = false;
     let (e2, sweep, mut psi, mut hi) = match way {
-        Way::Short => (e2, short, slope_scale.atan2(-first_guess(metric.mass, ux, uy, cos, sin)), PI),
+        Way::Short => {
+            let guess = first_guess(metric.mass, ux, uy, cos, sin);
+            let m = metric.mass;
+            let correction = tabulated.then(|| short_way_table().correction(m * ux, m * uy, short)).flatten();
+            // A tabulated start is close enough for the first shot to be the fine one.
+            fine = correction.is_some();
+            (e2, short, slope_scale.atan2(-(guess + correction.map_or(0.0, |c| c / m))), PI)
+        }
         Way::Long => {
             // Rays leaving inward at more than the critical angle `ψ_c` (impact parameter
             // b = sin ψ/(u_x √(1 − 2Mu_x)) below 3√3 M) are captured. Inside the photon sphere
@@ -311,7 +333,6 @@ pub fn connect_facing(
         }
     };
     let mut lo = 0.0;
-    let mut fine = false;
     let mut track = Track::new();
     for _ in 0..MAX_ITERATIONS {
         let s = -slope_scale / psi.tan();
@@ -328,6 +349,11 @@ pub fn connect_facing(
             Shot::Reaches(end) => {
                 let f = end[0] - uy;
                 let (newton, step, remaining) = newton_step(&end, f, s, slope_scale);
+                if remaining <= FINE_GATE * uy
+                    && facing.is_some_and(|n| arrives_behind(n, xh, e2, sweep, uy, end[1] + end[3] * step))
+                {
+                    return None;
+                }
                 if fine && remaining <= UTOL * uy {
                     // The step taken unconfirmed: slope and Jacobi field at `y` follow it to first
                     // order, equation (4).
@@ -342,11 +368,6 @@ pub fn connect_facing(
                     } else {
                         hi = psi;
                     }
-                }
-                if remaining <= FINE_GATE * uy
-                    && facing.is_some_and(|n| arrives_behind(n, xh, e2, sweep, uy, end[1] + end[3] * step))
-                {
-                    return None;
                 }
                 fine |= remaining <= FINE_GATE * uy;
                 if newton > lo && newton < hi {
@@ -422,7 +443,7 @@ impl Ends {
 /// `3M[(u_x² + s²)(1 − cos φ)/2 + (u_x² − s²)(cos φ − cos 2φ)/6 + u_x s (2 sin φ − sin 2φ)/3]`,
 /// and `u₀ + w = u_y` at `φ = Δφ` is a quadratic in `s`; its root nearest the flat one. A good
 /// guess saves Newton iterations, each a full integration.
-fn first_guess(mass: f64, ux: f64, uy: f64, cos: f64, sin: f64) -> f64 {
+pub(super) fn first_guess(mass: f64, ux: f64, uy: f64, cos: f64, sin: f64) -> f64 {
     let (cos2, sin2) = (cos * cos - sin * sin, 2.0 * sin * cos);
     let (even, odd) = ((1.0 - cos) / 2.0, (cos - cos2) / 6.0);
     let a2 = 3.0 * mass * (even - odd);
