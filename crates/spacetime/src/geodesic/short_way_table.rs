@@ -115,6 +115,9 @@ mod tests {
         }
         assert!(covered > 300, "the table covered {covered} pairs");
         // Measured: 2.3·10⁻³ of u_y at worst from the table, 1.2 from the first guess (near r = 1).
-        assert!(worst_table < 5e-3 && worst_table * 100.0 < worst_guess, "table {worst_table:e}, guess {worst_guess:e}");
+        assert!(
+            worst_table < 5e-3 && worst_table * 100.0 < worst_guess,
+            "table {worst_table:e}, guess {worst_guess:e}"
+        );
     }
 }
