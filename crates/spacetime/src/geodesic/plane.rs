@@ -296,16 +296,10 @@ impl PlaneStep<'_> {
     /// World position and direction at fraction `θ ∈ [0, 1]` of the step.
     pub fn point<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> PlanePoint {
         match self {
-            PlaneStep::Curved { segment, phi0, attempt, span, frame: (n0, t0) } => {
-                let (phi, u, du) = Self::curve(segment, *phi0, attempt, theta * span);
-                let sign = region_sign(segment.region);
-                let (s, c) = sin_cos_small(phi - phi0);
-                let n: [f64; 3] = std::array::from_fn(|i| c * n0[i] + s * t0[i]);
-                let t: [f64; 3] = std::array::from_fn(|i| -s * n0[i] + c * t0[i]);
-                let (dr, dphi) = (-metric.radial_stretch(u) * du, u);
-                let dir = normalize3(&std::array::from_fn(|i| sign * (dr * n[i] + dphi * t[i])));
-                let rho = metric.world_radius(u);
-                PlanePoint { region: segment.region, position: scale3(&n, sign * rho), direction: dir }
+            PlaneStep::Curved { segment, phi0, attempt, span, frame } => {
+                let (u, du, axes) = Self::axes(segment, *phi0, attempt, frame, theta * span);
+                let direction = axes.along(-metric.radial_stretch(u) * du, u);
+                PlanePoint { region: segment.region, position: axes.at_radius(metric.world_radius(u)), direction }
             }
             PlaneStep::Straight { region, from, direction, length } => PlanePoint {
                 region: *region,
@@ -313,6 +307,22 @@ impl PlaneStep<'_> {
                 direction: *direction,
             },
         }
+    }
+
+    /// `(u, u')` and the radial and azimuthal directions at fraction `θ` of a curved step whose
+    /// start has the directions `(n0, t0)`.
+    fn axes(
+        segment: &Segment,
+        phi0: f64,
+        attempt: &PlaneAttempt,
+        (n0, t0): &([f64; 3], [f64; 3]),
+        theta: f64,
+    ) -> (f64, f64, PlaneAxes) {
+        let (phi, u, du) = Self::curve(segment, phi0, attempt, theta);
+        let (s, c) = sin_cos_small(phi - phi0);
+        let radial = std::array::from_fn(|i| c * n0[i] + s * t0[i]);
+        let azimuthal = std::array::from_fn(|i| -s * n0[i] + c * t0[i]);
+        (u, du, PlaneAxes { sign: region_sign(segment.region), radial, azimuthal })
     }
 
     /// World position at fraction `θ ∈ [0, 1]` of the step: [`PlaneStep::point`] without the
@@ -335,16 +345,10 @@ impl PlaneStep<'_> {
     /// the static observer's) at fraction `θ ∈ [0, 1]` of the step: `d(ρ n)/dφ = ρ'(u) u' n + ρ t`.
     pub fn knot<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> ([f64; 3], [f64; 3]) {
         match self {
-            PlaneStep::Curved { segment, phi0, attempt, span, frame: (n0, t0) } => {
-                let (phi, u, du) = Self::curve(segment, *phi0, attempt, theta * span);
-                let sign = region_sign(segment.region);
-                let (s, c) = sin_cos_small(phi - phi0);
-                let n: [f64; 3] = std::array::from_fn(|i| c * n0[i] + s * t0[i]);
-                let t: [f64; 3] = std::array::from_fn(|i| -s * n0[i] + c * t0[i]);
+            PlaneStep::Curved { segment, phi0, attempt, span, frame } => {
+                let (u, du, axes) = Self::axes(segment, *phi0, attempt, frame, theta * span);
                 let rho = metric.world_radius(u);
-                let (dr, dphi) = (metric.world_radius_slope(u) * du, rho);
-                let tangent = normalize3(&std::array::from_fn(|i| sign * (dr * n[i] + dphi * t[i])));
-                (scale3(&n, sign * rho), tangent)
+                (axes.at_radius(rho), axes.along(metric.world_radius_slope(u) * du, rho))
             }
             PlaneStep::Straight { from, direction, length, .. } => {
                 (Self::along(from, direction, *length, theta), *direction)
@@ -371,6 +375,26 @@ impl PlaneStep<'_> {
             0.0
         };
         std::array::from_fn(|i| from[i] + s * direction[i])
+    }
+}
+
+/// The chart's radial and azimuthal unit vectors at a point of a step, and the sign that takes
+/// the chart to world coordinates in the step's region.
+struct PlaneAxes {
+    sign: f64,
+    radial: [f64; 3],
+    azimuthal: [f64; 3],
+}
+
+impl PlaneAxes {
+    /// The world point at world radius `rho` along the radial direction.
+    fn at_radius(&self, rho: f64) -> [f64; 3] {
+        scale3(&self.radial, self.sign * rho)
+    }
+
+    /// The unit world vector with radial and azimuthal components in the ratio `dr : dphi`.
+    fn along(&self, dr: f64, dphi: f64) -> [f64; 3] {
+        normalize3(&std::array::from_fn(|i| self.sign * (dr * self.radial[i] + dphi * self.azimuthal[i])))
     }
 }
 
