@@ -6,7 +6,10 @@
 //! costs one BVH query. Spherically symmetric spacetimes use the exact in-plane tracer; others
 //! (Kerr) the 4-D Hamiltonian tracer. Curved steps are split where their chord strays more than
 //! `epsilon` from the curve, so the chords follow the ray within `epsilon` and a hit on a chord
-//! is a hit on the ray to that tolerance.
+//! is a hit on the ray to that tolerance. A piece of a step that nothing comes near is not
+//! split: in Schwarzschild spacetime, where every ray bends towards the hole, a piece lies in the
+//! triangle of its chord and end tangents, and one triangle test clears it; elsewhere a box
+//! about the chord, widened by twice the sagitta, does.
 //!
 //! Local frames have their axes aligned with the world's: directions handed in and out are in
 //! the static observer's orthonormal frame (the normal observer's inside a Kerr ergosphere),

@@ -1,6 +1,6 @@
 //! Taylor-series integration of the Schwarzschild Binet equation with its first and second
 //! variations, the system the connection solver shoots ([`connect`](super::connect), equations
-//! (1), (2) and (4)):
+//! (1), (2) and (4)), and of the orbit alone, for the in-plane tracer ([`OrbitStep`]):
 //!
 //! ```text
 //! u'' = −u + 3Mu²,   J'' = −J + 6MuJ,   K'' = −K + 6MuK + 6MJ².

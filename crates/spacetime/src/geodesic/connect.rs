@@ -272,9 +272,8 @@ pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) -> Op
 
 /// [`connect`] to a point `y` on a surface that only the rays reaching it from the side of its
 /// world normal `facing` matter for (a one-sided emitter): a ray found arriving from the other
-/// side is dropped as soon as its direction is known to about 10⁻³, before the shots that
-/// would refine it (arrival directions within [`FACING_MARGIN`] of the surface are kept and
-/// refined).
+/// side is dropped as soon as a shot gives its direction to about 10⁻³, before any shot that
+/// would refine it (rays within 10⁻² in the cosine of grazing the surface are kept and refined).
 pub fn connect_facing(
     metric: &Schwarzschild,
     x: [f64; 3],

@@ -10,6 +10,10 @@
 //! (`b > 64` length scales), where the bending is small and its precision matters; closer rays
 //! integrate `u` itself.
 //!
+//! Schwarzschild rays that integrate `u` itself step by the Taylor series of their orbit
+//! (`u'' = −u + 3Mu²` has a polynomial right-hand side: [`binet_taylor`](super::binet_taylor)),
+//! whose polynomial is also the dense output; other rays by Dormand–Prince 5(4).
+//!
 //! A wormhole's lower region uses `ũ = 1/(b₀² u)`, which obeys the same equation (the isometry
 //! `s ↦ b₀²/s`); the tracer switches at the throat.
 
