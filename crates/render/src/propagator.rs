@@ -64,7 +64,11 @@ pub struct Arrival {
 #[derive(Clone, Debug)]
 pub struct Propagator {
     spacetime: Spacetime,
+    /// The 4-D tracer's settings; its steps move at most half the distance to the centre.
     trace: TraceSettings,
+    /// The in-plane tracer's: its steps sweep at most a radian of azimuth (the Taylor series'
+    /// own longest step; a piece of ray sweeping up to π still lies in its tangent triangle).
+    plane_trace: TraceSettings,
     /// Largest allowed distance between a chord and the curved step it stands for.
     epsilon: f64,
     intersection: Intersection,
@@ -102,8 +106,10 @@ impl Propagator {
                 max_steps: max_iterations,
             },
         };
+        let plane_trace = TraceSettings { max_step_fraction: trace.max_step_fraction.max(1.0), ..trace };
         let epsilon = 1e-4 * scene_radius.max(scale);
-        Self { spacetime, trace, epsilon, intersection, bound_arcs: true, to_chart: glam::DQuat::IDENTITY }
+        let to_chart = glam::DQuat::IDENTITY;
+        Self { spacetime, trace, plane_trace, epsilon, intersection, bound_arcs: true, to_chart }
     }
 
     /// Points the spacetime's symmetry axis (a Kerr hole's spin) along the world vector `axis`.
@@ -241,7 +247,7 @@ impl Propagator {
         // Where the previous step ended, and in which region's coordinates.
         let (mut last, mut last_region) = (Knot { theta: 0.0, at: origin, tangent: None }, region);
         let mut leaves_origin = true;
-        let t = trace_plane(metric, start, &self.trace, |step| {
+        let t = trace_plane(metric, start, &self.plane_trace, |step| {
             let region = step.region();
             let knot = |theta: f64| {
                 if bounded {
