@@ -156,6 +156,9 @@ impl World {
     /// just off a surface on the far side from the rest, like the origin of a ray that leaves its
     /// surface's offset point straight back into it, or a wall beside the one a ray leaves, does
     /// not count as touching: the ray crosses that surface.)
+    ///
+    /// Conservative: only flat shapes can be cleared (the triangle must keep strictly to one side
+    /// of their plane); any other shape whose bounds reach the triangle's counts as in the way.
     pub fn triangle_is_clear(&self, region: Region, corners: [Vec3; 3], touching: [bool; 3], margin: f64) -> bool {
         let r = self.region(region);
         let reach = Vec3::splat(margin);

@@ -56,20 +56,18 @@ struct Series {
 impl Series {
     /// The series of the solution through `y = (u, u', J, J', K, K')` for mass `mass`.
     fn at(mass: f64, y: &[f64; 6]) -> Self {
-        let (m3, m6) = (3.0 * mass, 6.0 * mass);
-        let mut s = Series { u: [0.0; ORDER + 1], j: [0.0; ORDER + 1], k: [0.0; ORDER + 1] };
-        [s.u[0], s.u[1], s.j[0], s.j[1], s.k[0], s.k[1]] = *y;
+        let m6 = 6.0 * mass;
+        let mut s = Series { u: orbit_coefficients(mass, y[0], y[1]), j: [0.0; ORDER + 1], k: [0.0; ORDER + 1] };
+        [s.j[0], s.j[1], s.k[0], s.k[1]] = [y[2], y[3], y[4], y[5]];
         for n in 0..ORDER - 1 {
-            let (mut uu, mut uj, mut uk, mut jj) = (0.0, 0.0, 0.0, 0.0);
+            let (mut uj, mut uk, mut jj) = (0.0, 0.0, 0.0);
             for i in 0..=n {
                 let (a, b, c) = (s.u[i], s.j[n - i], s.k[n - i]);
-                uu += a * s.u[n - i];
                 uj += a * b;
                 uk += a * c;
                 jj += s.j[i] * b;
             }
             let scale = RECIPROCALS[n];
-            s.u[n + 2] = (-s.u[n] + m3 * uu) * scale;
             s.j[n + 2] = (-s.j[n] + m6 * uj) * scale;
             s.k[n + 2] = (-s.k[n] + m6 * (uk + jj)) * scale;
         }
@@ -97,6 +95,19 @@ impl Series {
         let (k, dk) = value_and_slope(&self.k, h);
         [u, du, j, dj, k, dk]
     }
+}
+
+/// Coefficients `0..=ORDER` of the orbit `u'' = −u + 3Mu²` through `(u, u')`: its own
+/// recurrence, `aₖ₊₂ = (−aₖ + 3M (a∗a)ₖ) / ((k+1)(k+2))`, needs no other series.
+fn orbit_coefficients(mass: f64, u: f64, du: f64) -> [f64; ORDER + 1] {
+    let m3 = 3.0 * mass;
+    let mut c = [0.0; ORDER + 1];
+    [c[0], c[1]] = [u, du];
+    for n in 0..ORDER - 1 {
+        let uu: f64 = (0..=n).map(|i| c[i] * c[n - i]).sum();
+        c[n + 2] = (-c[n] + m3 * uu) * RECIPROCALS[n];
+    }
+    c
 }
 
 /// The step `h ≤ 1` that keeps both `h^(N−1) ≤ before` and `h^N ≤ last` (bounds in `[0, 1]`):
@@ -131,13 +142,7 @@ impl OrbitStep {
     /// The step from `(u, u')` of at most `h_max` for mass `mass`, as long as the last two terms
     /// of its series stay within `tol` of the larger of `|u|` and `|u'|`.
     pub fn new(mass: f64, u: f64, du: f64, h_max: f64, tol: f64) -> Self {
-        let m3 = 3.0 * mass;
-        let mut c = [0.0; ORDER + 1];
-        [c[0], c[1]] = [u, du];
-        for n in 0..ORDER - 1 {
-            let uu: f64 = (0..=n).map(|i| c[i] * c[n - i]).sum();
-            c[n + 2] = (-c[n] + m3 * uu) * RECIPROCALS[n];
-        }
+        let c = orbit_coefficients(mass, u, du);
         let size = tol * u.abs().max(du.abs());
         let bound = |n: usize| (size / c[n].abs()).min(1.0);
         let h = shorter_root(bound(ORDER - 1), bound(ORDER)).min(MAX_STEP).min(h_max);

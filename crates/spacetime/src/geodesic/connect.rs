@@ -57,6 +57,7 @@
 //! which is `1/d²` in flat space (`J = sin φ`, law of sines).
 
 use super::binet_taylor;
+use super::plane::PlaneAxes;
 use super::short_way_table::short_way_table;
 use super::tangent_triangle::tangent_triangle;
 use crate::metric::Schwarzschild;
@@ -221,36 +222,15 @@ impl Waypoints {
     /// World position and unit world tangent of the point `(φ, u, u')`: world coordinates see
     /// the ray's direction as `(−u', u)` in the radial and azimuthal directions.
     fn world(&self, &[phi, u, du]: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
-        let directions = PlaneDirections::at(&self.xh, &self.e2, phi);
-        (scale3(&directions.radial, 1.0 / u), directions.world_tangent(u, du))
+        let axes = PlaneAxes::at(&self.xh, &self.e2, phi);
+        (axes.at_radius(1.0 / u), world_tangent(&axes, u, du))
     }
 }
 
-/// The radial and azimuthal unit vectors at azimuth `φ` of the plane with basis `x̂`, `e₂`.
-struct PlaneDirections {
-    radial: [f64; 3],
-    azimuthal: [f64; 3],
-}
-
-impl PlaneDirections {
-    fn at(xh: &[f64; 3], e2: &[f64; 3], phi: f64) -> Self {
-        let (sin, cos) = phi.sin_cos();
-        Self {
-            radial: std::array::from_fn(|i| cos * xh[i] + sin * e2[i]),
-            azimuthal: std::array::from_fn(|i| -sin * xh[i] + cos * e2[i]),
-        }
-    }
-
-    /// The unit vector with radial and azimuthal components in the ratio `dr : dphi`.
-    fn along(&self, dr: f64, dphi: f64) -> [f64; 3] {
-        normalize3(&std::array::from_fn(|i| dr * self.radial[i] + dphi * self.azimuthal[i]))
-    }
-
-    /// Unit world tangent of the ray at `(u, u')`: world coordinates see its direction of travel
-    /// as `(−u', u)` in the radial and azimuthal directions.
-    fn world_tangent(&self, u: f64, du: f64) -> [f64; 3] {
-        self.along(-du, u)
-    }
+/// Unit world tangent of the ray at `(u, u')`, given the plane's directions there: world
+/// coordinates see its direction of travel as `(−u', u)` in the radial and azimuthal directions.
+fn world_tangent(axes: &PlaneAxes, u: f64, du: f64) -> [f64; 3] {
+    axes.along(-du, u)
 }
 
 /// How one shot from `x` ended.
@@ -387,7 +367,7 @@ pub(super) fn solve(
 /// Whether a ray arriving at `u_y` after sweeping `sweep` in the plane `xh`, `e2` with slope `u'`
 /// meets a surface of world normal `n` from behind, by more than [`FACING_MARGIN`] in the cosine.
 fn arrives_behind(n: [f64; 3], xh: [f64; 3], e2: [f64; 3], sweep: f64, uy: f64, du: f64) -> bool {
-    dot3(&n, &PlaneDirections::at(&xh, &e2, sweep).world_tangent(uy, du)) > FACING_MARGIN
+    dot3(&n, &world_tangent(&PlaneAxes::at(&xh, &e2, sweep), uy, du)) > FACING_MARGIN
 }
 
 /// Newton's step in `s` from a shot that ended in `end` missing `u_y` by `f`, as far as `ψ` can
@@ -424,10 +404,10 @@ impl Ends {
         let start = std::array::from_fn(|i| c_psi * self.xh[i] + s_psi * self.e2[i]);
         let start_tangent =
             normalize3(&std::array::from_fn(|i| c_psi / stretch(self.ux) * self.xh[i] + s_psi * self.e2[i]));
-        let at_y = PlaneDirections::at(&self.xh, &self.e2, self.sweep);
+        let at_y = PlaneAxes::at(&self.xh, &self.e2, self.sweep);
         // Static frame: (n_r, n_φ) ∝ (−σ u', u).
         let end = at_y.along(-stretch(self.uy) * self.du, self.uy);
-        let end_tangent = at_y.world_tangent(self.uy, self.du);
+        let end_tangent = world_tangent(&at_y, self.uy, self.du);
         let t_phi = self.uy / self.du.hypot(self.uy);
         // Equation (3).
         let density =

@@ -382,22 +382,30 @@ impl PlaneStep<'_> {
     }
 }
 
-/// The chart's radial and azimuthal unit vectors at a point of a step, and the sign that takes
-/// the chart to world coordinates in the step's region.
-struct PlaneAxes {
+/// The chart's radial and azimuthal unit vectors at a point of a ray's plane, and the sign that
+/// takes the chart to world coordinates in the point's region.
+pub(super) struct PlaneAxes {
     sign: f64,
     radial: [f64; 3],
     azimuthal: [f64; 3],
 }
 
 impl PlaneAxes {
+    /// The directions at azimuth `φ` of the plane with basis `x̂`, `e₂`, in the upper region.
+    pub(super) fn at(xh: &[f64; 3], e2: &[f64; 3], phi: f64) -> Self {
+        let (sin, cos) = phi.sin_cos();
+        let radial = std::array::from_fn(|i| cos * xh[i] + sin * e2[i]);
+        let azimuthal = std::array::from_fn(|i| -sin * xh[i] + cos * e2[i]);
+        Self { sign: 1.0, radial, azimuthal }
+    }
+
     /// The world point at world radius `rho` along the radial direction.
-    fn at_radius(&self, rho: f64) -> [f64; 3] {
+    pub(super) fn at_radius(&self, rho: f64) -> [f64; 3] {
         scale3(&self.radial, self.sign * rho)
     }
 
     /// The unit world vector with radial and azimuthal components in the ratio `dr : dphi`.
-    fn along(&self, dr: f64, dphi: f64) -> [f64; 3] {
+    pub(super) fn along(&self, dr: f64, dphi: f64) -> [f64; 3] {
         normalize3(&std::array::from_fn(|i| self.sign * (dr * self.radial[i] + dphi * self.azimuthal[i])))
     }
 }
