@@ -60,16 +60,16 @@ impl Series {
         let mut s = Series { u: orbit_coefficients(mass, y[0], y[1]), j: [0.0; ORDER + 1], k: [0.0; ORDER + 1] };
         [s.j[0], s.j[1], s.k[0], s.k[1]] = [y[2], y[3], y[4], y[5]];
         for n in 0..ORDER - 1 {
-            let (mut uj, mut uk, mut jj) = (0.0, 0.0, 0.0);
-            for i in 0..=n {
-                let (a, b, c) = (s.u[i], s.j[n - i], s.k[n - i]);
-                uj += a * b;
-                uk += a * c;
-                jj += s.j[i] * b;
+            // Slices and zipped iterators: no index checks inside the loop.
+            let (u, j, k) = (&s.u[..=n], &s.j[..=n], &s.k[..=n]);
+            let (mut uj, mut ukjj) = (0.0, 0.0);
+            for ((&a, &b), (&jn, &kn)) in u.iter().zip(j).zip(j.iter().rev().zip(k.iter().rev())) {
+                uj += a * jn;
+                ukjj += a * kn + b * jn;
             }
             let scale = RECIPROCALS[n];
             s.j[n + 2] = (-s.j[n] + m6 * uj) * scale;
-            s.k[n + 2] = (-s.k[n] + m6 * (uk + jj)) * scale;
+            s.k[n + 2] = (-s.k[n] + m6 * ukjj) * scale;
         }
         s
     }
@@ -104,7 +104,7 @@ fn orbit_coefficients(mass: f64, u: f64, du: f64) -> [f64; ORDER + 1] {
     let mut c = [0.0; ORDER + 1];
     [c[0], c[1]] = [u, du];
     for n in 0..ORDER - 1 {
-        let uu: f64 = (0..=n).map(|i| c[i] * c[n - i]).sum();
+        let uu: f64 = c[..=n].iter().zip(c[..=n].iter().rev()).map(|(a, b)| a * b).sum();
         c[n + 2] = (-c[n] + m3 * uu) * RECIPROCALS[n];
     }
     c
