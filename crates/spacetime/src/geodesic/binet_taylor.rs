@@ -114,10 +114,24 @@ fn orbit_coefficients(mass: f64, u: f64, du: f64) -> [f64; ORDER + 1] {
 /// which root is smaller is told by integer powers, so only one root is taken.
 fn shorter_root(before: f64, last: f64) -> f64 {
     if before.powi(ORDER as i32) < last.powi(ORDER as i32 - 1) {
-        before.powf(1.0 / (ORDER - 1) as f64)
+        root::<{ ORDER as i32 - 1 }>(before)
     } else {
-        last.powf(1.0 / ORDER as f64)
+        root::<{ ORDER as i32 }>(last)
     }
+}
+
+/// `x^(1/N)` for `x ∈ [0, 1]` to within 2·10⁻³ relative, all a step length needs (a step that
+/// much too long raises the truncation term by 2 %): the exponent divided by `N` in the bits of
+/// `x` (within 6 %), then one step of Halley's method for `yᴺ = x`, which triples the digits.
+/// libm's `powf` cost 8 % of a connection.
+fn root<const N: i32>(x: f64) -> f64 {
+    if !(x > f64::MIN_POSITIVE) {
+        return 0.0;
+    }
+    let one = 1.0f64.to_bits() as i64;
+    let y = f64::from_bits(((x.to_bits() as i64 - one) / i64::from(N) + one) as u64);
+    let (yn, n) = (y.powi(N), f64::from(N));
+    y * ((n - 1.0) * yn + (n + 1.0) * x) / ((n + 1.0) * yn + (n - 1.0) * x)
 }
 
 /// A polynomial and its derivative at `h`, by Horner's rule.
@@ -184,6 +198,17 @@ pub fn step(mass: f64, y: &[f64; 6], h_max: f64, tol: f64, floor: [f64; 2]) -> (
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn roots_are_close_to_libms() {
+        for k in 0..=1000 {
+            let x = 10f64.powf(-20.0 * f64::from(k) / 1000.0);
+            assert!((root::<9>(x) / x.powf(1.0 / 9.0) - 1.0).abs() < 2e-3, "{x}");
+            assert!((root::<10>(x) / x.powf(0.1) - 1.0).abs() < 2e-3, "{x}");
+        }
+        assert_eq!(root::<10>(0.0), 0.0);
+        assert_eq!(root::<10>(1.0), 1.0);
+    }
 
     #[test]
     fn without_mass_the_series_is_sine_and_cosine() {
