@@ -58,7 +58,7 @@
 
 use super::binet_taylor;
 use super::plane::PlaneAxes;
-use super::short_way_table::short_way_table;
+use super::start_table::start_table;
 use super::tangent_triangle::tangent_triangle;
 use crate::metric::Schwarzschild;
 use crate::tensor::{cross3, dot3, norm3, normalize3, scale3};
@@ -264,8 +264,8 @@ pub fn connect_facing(
     solve(metric, x, y, way, facing, true)
 }
 
-/// [`connect_facing`], starting the short way from the tabulated slope where `tabulated` and the
-/// table covers the ends, else from [`first_guess`].
+/// [`connect_facing`], starting from the tabulated [`start_parameter`] where `tabulated` and the
+/// way's table covers the ends, else from [`guessed_parameter`].
 pub(super) fn solve(
     metric: &Schwarzschild,
     x: [f64; 3],
@@ -288,29 +288,22 @@ pub(super) fn solve(
     let e2 = normalize3(&std::array::from_fn(|i| yh[i] - cos * xh[i]));
     let (ux, uy) = (1.0 / rx, 1.0 / ry);
     let slope_scale = ux * (1.0 - 2.0 * metric.mass * ux).sqrt();
-    let mut fine = false;
-    let (e2, sweep, mut psi, mut hi) = match way {
-        Way::Short => {
-            let guess = first_guess(metric.mass, ux, uy, cos, sin);
-            let m = metric.mass;
-            let correction = tabulated.then(|| short_way_table().correction(m * ux, m * uy, short)).flatten();
-            // A tabulated start is close enough for the first shot to be the fine one.
-            fine = correction.is_some();
-            (e2, short, slope_scale.atan2(-(guess + correction.map_or(0.0, |c| c / m))), PI)
-        }
-        Way::Long => {
-            // Rays leaving inward at more than the critical angle `ψ_c` (impact parameter
-            // b = sin ψ/(u_x √(1 − 2Mu_x)) below 3√3 M) are captured. Inside the photon sphere
-            // the critical angle lies on the outward side instead.
-            if !(rx > 3.0 * metric.mass) {
-                return None;
-            }
-            let sin_critical = 3.0 * 3f64.sqrt() * metric.mass * slope_scale;
-            let sweep = 2.0 * PI - short;
-            let guess = long_guess(metric.mass, ux, uy, sweep, sin_critical);
-            (scale3(&e2, -1.0), sweep, guess, PI - sin_critical.asin())
-        }
+    let m = metric.mass;
+    // Rays leaving inward at more than the critical angle `ψ_c` (impact parameter
+    // b = sin ψ/(u_x √(1 − 2Mu_x)) below 3√3 M) are captured. Inside the photon sphere the
+    // critical angle lies on the outward side instead, and the long way is not sought.
+    if way == Way::Long && !(rx > 3.0 * m) {
+        return None;
+    }
+    let (e2, sweep, mut hi) = match way {
+        Way::Short => (e2, short, PI),
+        Way::Long => (scale3(&e2, -1.0), 2.0 * PI - short, PI - critical_sin(m, ux).asin()),
     };
+    let guess = guessed_parameter(way, m, ux, uy, cos, sin, sweep);
+    let correction = tabulated.then(|| start_table(way).correction(m * ux, m * uy, sweep)).flatten();
+    // A tabulated start is close enough for the first shot to be the fine one.
+    let mut fine = correction.is_some();
+    let mut psi = start_angle(way, m, ux, guess + correction.unwrap_or(0.0));
     let mut lo = 0.0;
     let mut track = Track::new();
     for _ in 0..MAX_ITERATIONS {
@@ -422,7 +415,7 @@ impl Ends {
 /// `3M[(u_x² + s²)(1 − cos φ)/2 + (u_x² − s²)(cos φ − cos 2φ)/6 + u_x s (2 sin φ − sin 2φ)/3]`,
 /// and `u₀ + w = u_y` at `φ = Δφ` is a quadratic in `s`; its root nearest the flat one. A good
 /// guess saves Newton iterations, each a full integration.
-pub(super) fn first_guess(mass: f64, ux: f64, uy: f64, cos: f64, sin: f64) -> f64 {
+fn first_guess(mass: f64, ux: f64, uy: f64, cos: f64, sin: f64) -> f64 {
     let (cos2, sin2) = (cos * cos - sin * sin, 2.0 * sin * cos);
     let (even, odd) = ((1.0 - cos) / 2.0, (cos - cos2) / 6.0);
     let a2 = 3.0 * mass * (even - odd);
@@ -437,17 +430,53 @@ pub(super) fn first_guess(mass: f64, ux: f64, uy: f64, cos: f64, sin: f64) -> f6
     }
 }
 
-/// First guess for the long way: in the strong-deflection limit a ray with `b = b_c(1 + ε)` from
-/// infinity to infinity sweeps `−ln ε + ln(216(7 − 4√3))` (Bozza 2002, eq. 36 with π added),
-/// less the azimuth the critical ray sweeps between each end and infinity,
+/// `sin ψ_c`, the sine of the critical angle at `u_x` (outside the photon sphere): rays leaving
+/// inward at more than `ψ_c` fall into the hole.
+fn critical_sin(mass: f64, ux: f64) -> f64 {
+    3.0 * 3f64.sqrt() * mass * ux * (1.0 - 2.0 * mass * ux).sqrt()
+}
+
+/// The parameter each way is shot, guessed and tabulated by, scale-free in `M`: the short way
+/// by `Ms`, `M` times the start slope of (1); the long way by `ln ε`, where
+/// `sin ψ = sin ψ_c (1 + ε)`, in which the sweep is nearly linear near the photon sphere.
+pub(super) fn start_parameter(way: Way, mass: f64, ux: f64, psi: f64) -> f64 {
+    match way {
+        Way::Short => -mass * ux * (1.0 - 2.0 * mass * ux).sqrt() / psi.tan(),
+        Way::Long => (psi.sin() / critical_sin(mass, ux) - 1.0).ln(),
+    }
+}
+
+/// The start angle `ψ` of [`start_parameter`] `parameter`.
+fn start_angle(way: Way, mass: f64, ux: f64, parameter: f64) -> f64 {
+    match way {
+        Way::Short => (ux * (1.0 - 2.0 * mass * ux).sqrt()).atan2(-parameter / mass),
+        Way::Long => PI - (critical_sin(mass, ux) * (1.0 + parameter.exp())).min(1.0).asin(),
+    }
+}
+
+/// First guess of [`start_parameter`] for the ray from `u_x` to `u_y` sweeping `sweep` (the short
+/// way's `Δφ` has cosine `cos` and sine `sin`).
+///
+/// Short way: [`first_guess`]. Long way: in the strong-deflection limit a ray with
+/// `b = b_c(1 + ε)` from infinity to infinity sweeps `−ln ε + ln(216(7 − 4√3))` (Bozza 2002,
+/// eq. 36 with π added), less the azimuth the critical ray sweeps between each end and infinity,
 /// `S(u) = 2[artanh √(2M(u + 1/6M)) − artanh √(1/3)]` (the critical orbit's integral, since
-/// `1/b_c² − u² + 2Mu³ = 2M(u − 1/3M)²(u + 1/6M)`). Solved for `ε`, then `sin ψ = sin ψ_c (1 + ε)`.
-fn long_guess(mass: f64, ux: f64, uy: f64, sweep: f64, sin_critical: f64) -> f64 {
-    let to_infinity = |u: f64| 2.0 * ((2.0 * mass * u + 1.0 / 3.0).sqrt().atanh() - (1.0f64 / 3.0).sqrt().atanh());
-    let ln_epsilon = (216.0 * (7.0 - 4.0 * 3f64.sqrt())).ln() - sweep - to_infinity(ux) - to_infinity(uy);
-    // An end inside the photon sphere has no such limit (NaN): start a little off critical.
-    let epsilon = if ln_epsilon.is_finite() { ln_epsilon.exp() } else { 0.05 };
-    PI - (sin_critical * (1.0 + epsilon)).min(1.0).asin()
+/// `1/b_c² − u² + 2Mu³ = 2M(u − 1/3M)²(u + 1/6M)`); an end inside the photon sphere has no such
+/// limit, and the guess is a little off critical.
+pub(super) fn guessed_parameter(way: Way, mass: f64, ux: f64, uy: f64, cos: f64, sin: f64, sweep: f64) -> f64 {
+    match way {
+        Way::Short => mass * first_guess(mass, ux, uy, cos, sin),
+        Way::Long => {
+            let to_infinity =
+                |u: f64| 2.0 * ((2.0 * mass * u + 1.0 / 3.0).sqrt().atanh() - (1.0f64 / 3.0).sqrt().atanh());
+            let ln_epsilon = (216.0 * (7.0 - 4.0 * 3f64.sqrt())).ln() - sweep - to_infinity(ux) - to_infinity(uy);
+            if ln_epsilon.is_finite() {
+                ln_epsilon
+            } else {
+                0.05f64.ln()
+            }
+        }
+    }
 }
 
 /// Integrates (1), (2) and (4) from `φ = 0` to `sweep` by Taylor series at relative tolerance

@@ -15,7 +15,7 @@ mod hamiltonian;
 mod interpolant;
 pub mod plane;
 pub mod rk4;
-mod short_way_table;
+mod start_table;
 pub mod tangent_triangle;
 
 pub use hamiltonian::{angular_momentum_z, energy, trace, HamiltonianStep, HamiltonianTracer};
