@@ -295,19 +295,22 @@ pub(super) fn solve(
     if way == Way::Long && !(rx > 3.0 * m) {
         return None;
     }
-    let (e2, sweep, mut hi) = match way {
-        Way::Short => (e2, short, PI),
-        Way::Long => (scale3(&e2, -1.0), 2.0 * PI - short, PI - critical_sin(m, ux).asin()),
+    // The long way sweeps `2π − Δφ` in the plane's other sense: the same cosine, the other sine.
+    let (e2, sweep, sweep_sin_cos, mut hi) = match way {
+        Way::Short => (e2, short, (sin, cos), PI),
+        Way::Long => (scale3(&e2, -1.0), 2.0 * PI - short, (-sin, cos), PI - critical_sin(m, ux).asin()),
     };
+    let at_y = PlaneAxes::at_sin_cos(&xh, &e2, sweep_sin_cos);
     let guess = guessed_parameter(way, m, ux, uy, cos, sin, sweep);
     let correction = tabulated.then(|| start_table(way).correction(m * ux, m * uy, sweep)).flatten();
     // A tabulated start is close enough for the first shot to be the fine one.
     let mut fine = correction.is_some();
+    let slope_at = |psi: f64| -slope_scale / psi.tan();
     let mut psi = start_angle(way, m, ux, guess + correction.unwrap_or(0.0));
+    let mut s = slope_at(psi);
     let mut lo = 0.0;
     let mut track = Track::new();
     for _ in 0..MAX_ITERATIONS {
-        let s = -slope_scale / psi.tan();
         let rtol = if fine { final_rtol(way) } else { RTOL_COARSE };
         let next = match shoot(metric, ux, s, sweep, rtol, &mut track)? {
             Shot::Escapes => {
@@ -322,8 +325,10 @@ pub(super) fn solve(
                 let f = end[0] - uy;
                 let (newton, step, remaining) = newton_step(&end, f, s, slope_scale);
                 if remaining <= FINE_GATE * uy
-                    && facing.is_some_and(|n| arrives_behind(n, xh, e2, sweep, uy, end[1] + end[3] * step))
+                    && facing
+                        .is_some_and(|n| dot3(&n, &world_tangent(&at_y, uy, end[1] + end[3] * step)) > FACING_MARGIN)
                 {
+                    // It meets the surface from behind.
                     return None;
                 }
                 if fine && remaining <= UTOL * uy {
@@ -331,7 +336,10 @@ pub(super) fn solve(
                     // order, equation (4).
                     let (du, jacobi) = (end[1] + end[3] * step, end[2] + end[4] * step);
                     let waypoints = track.waypoints(step, xh, e2);
-                    return Ends { xh, e2, sweep, psi: newton, ux, uy, du, jacobi, waypoints }.connection(metric);
+                    let start = StartDirection::of_slope(s + step, slope_scale);
+                    let (sin_sweep, _) = sweep_sin_cos;
+                    let ends = Ends { xh, e2, at_y, sin_sweep, sweep, start, ux, uy, du, jacobi, waypoints };
+                    return ends.connection(metric);
                 }
                 // A shot's sign is trusted only well above its own integration error.
                 if f.abs() > 10.0 * rtol * uy {
@@ -343,24 +351,18 @@ pub(super) fn solve(
                 }
                 fine |= remaining <= FINE_GATE * uy;
                 if newton > lo && newton < hi {
-                    newton
-                } else {
-                    0.5 * (lo + hi)
+                    (psi, s) = (newton, s + step);
+                    continue;
                 }
+                0.5 * (lo + hi)
             }
         };
         if hi - lo <= 1e-15 {
             return None;
         }
-        psi = next;
+        (psi, s) = (next, slope_at(next));
     }
     None
-}
-
-/// Whether a ray arriving at `u_y` after sweeping `sweep` in the plane `xh`, `e2` with slope `u'`
-/// meets a surface of world normal `n` from behind, by more than [`FACING_MARGIN`] in the cosine.
-fn arrives_behind(n: [f64; 3], xh: [f64; 3], e2: [f64; 3], sweep: f64, uy: f64, du: f64) -> bool {
-    dot3(&n, &world_tangent(&PlaneAxes::at(&xh, &e2, sweep), uy, du)) > FACING_MARGIN
 }
 
 /// Newton's step in `s` from a shot that ended in `end` missing `u_y` by `f`, as far as `ψ` can
@@ -373,12 +375,29 @@ fn newton_step(end: &[f64; 6], f: f64, s: f64, slope_scale: f64) -> (f64, f64, f
     (psi, step, remaining)
 }
 
+/// The direction a ray leaves `x` in: `sin ψ` and `cos ψ`, from the outward radial direction.
+struct StartDirection {
+    sin: f64,
+    cos: f64,
+}
+
+impl StartDirection {
+    /// The direction of start slope `s` of (1): `cot ψ = −s/(u_x/σ_x)`, `ψ ∈ (0, π)`.
+    fn of_slope(s: f64, slope_scale: f64) -> Self {
+        let norm = (slope_scale * slope_scale + s * s).sqrt();
+        Self { sin: slope_scale / norm, cos: -s / norm }
+    }
+}
+
 /// The converged ray's data at both ends.
 struct Ends {
     xh: [f64; 3],
     e2: [f64; 3],
+    /// The plane's directions at `y`, and the sine of the sweep.
+    at_y: PlaneAxes,
+    sin_sweep: f64,
     sweep: f64,
-    psi: f64,
+    start: StartDirection,
     ux: f64,
     uy: f64,
     du: f64,
@@ -392,19 +411,18 @@ impl Ends {
             return None;
         }
         let stretch = |u: f64| 1.0 / (1.0 - 2.0 * metric.mass * u).sqrt();
-        let (s_psi, c_psi) = self.psi.sin_cos();
-        let sin_sweep = self.sweep.sin();
+        let StartDirection { sin: s_psi, cos: c_psi } = self.start;
         let start = std::array::from_fn(|i| c_psi * self.xh[i] + s_psi * self.e2[i]);
         let start_tangent =
             normalize3(&std::array::from_fn(|i| c_psi / stretch(self.ux) * self.xh[i] + s_psi * self.e2[i]));
-        let at_y = PlaneAxes::at(&self.xh, &self.e2, self.sweep);
+        let at_y = &self.at_y;
         // Static frame: (n_r, n_φ) ∝ (−σ u', u).
         let end = at_y.along(-stretch(self.uy) * self.du, self.uy);
-        let end_tangent = world_tangent(&at_y, self.uy, self.du);
+        let end_tangent = world_tangent(at_y, self.uy, self.du);
         let t_phi = self.uy / self.du.hypot(self.uy);
         // Equation (3).
         let density =
-            s_psi.powi(3) * stretch(self.ux) * self.uy.powi(3) / (self.ux * self.jacobi * sin_sweep.abs() * t_phi);
+            s_psi.powi(3) * stretch(self.ux) * self.uy.powi(3) / (self.ux * self.jacobi * self.sin_sweep.abs() * t_phi);
         let (solid_angle_per_area, swept, waypoints) = (density, self.sweep, self.waypoints);
         Some(Connection { start, start_tangent, end, end_tangent, solid_angle_per_area, swept, waypoints })
     }

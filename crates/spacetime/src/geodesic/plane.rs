@@ -393,7 +393,11 @@ pub(super) struct PlaneAxes {
 impl PlaneAxes {
     /// The directions at azimuth `φ` of the plane with basis `x̂`, `e₂`, in the upper region.
     pub(super) fn at(xh: &[f64; 3], e2: &[f64; 3], phi: f64) -> Self {
-        let (sin, cos) = phi.sin_cos();
+        Self::at_sin_cos(xh, e2, phi.sin_cos())
+    }
+
+    /// [`PlaneAxes::at`] the azimuth with sine and cosine `(sin, cos)`.
+    pub(super) fn at_sin_cos(xh: &[f64; 3], e2: &[f64; 3], (sin, cos): (f64, f64)) -> Self {
         let radial = std::array::from_fn(|i| cos * xh[i] + sin * e2[i]);
         let azimuthal = std::array::from_fn(|i| -sin * xh[i] + cos * e2[i]);
         Self { sign: 1.0, radial, azimuthal }
