@@ -51,6 +51,9 @@ struct RegionScene {
     objects: Vec<Object>,
     /// Each object's bounds, kept because curved ray steps ask for them many times per step.
     bounds: Vec<Aabb>,
+    /// Each flat object's supporting plane (a point and the unit normal), kept beside the bounds
+    /// for the same reason: triangle tests ask for it as often.
+    planes: Vec<Option<(Vec3, Vec3)>>,
     bvh: Bvh,
     /// Emitting objects with finite area, and the cumulative distribution of their power
     /// (radiance luminance × area) for choosing one.
@@ -64,6 +67,7 @@ struct RegionScene {
 impl RegionScene {
     fn new(objects: Vec<Object>, sky: Sky) -> Self {
         let bounds: Vec<Aabb> = objects.iter().map(|o| o.shape.bounds()).collect();
+        let planes = objects.iter().map(|o| o.shape.supporting_plane()).collect();
         let bvh = Bvh::build(&bounds);
         let mut lights = Vec::new();
         let mut light_cdf = Vec::new();
@@ -82,7 +86,7 @@ impl RegionScene {
         for c in &mut light_cdf {
             *c /= total;
         }
-        Self { objects, bounds, bvh, lights, light_cdf, light_power: total, sky }
+        Self { objects, bounds, planes, bvh, lights, light_cdf, light_power: total, sky }
     }
 }
 
@@ -169,7 +173,7 @@ impl World {
             if (0..3).any(|k| b.min[k] > query.max[k] || b.max[k] < query.min[k]) {
                 return false;
             }
-            let Some((point, normal)) = r.objects[i].shape.supporting_plane() else { return true };
+            let Some((point, normal)) = r.planes[i] else { return true };
             let heights = corners.map(|corner| (corner - point).dot(normal));
             let clear_above = |k: usize| {
                 let gap = if touching[k] { -ON_SURFACE * corners[k].abs().max_element().max(1.0) } else { margin };
