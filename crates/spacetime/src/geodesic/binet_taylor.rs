@@ -124,7 +124,7 @@ fn orbit_coefficients(mass: f64, u: f64, du: f64) -> [f64; ORDER + 1] {
 /// the latency of this sum, not by its operations: halving its terms halves its chain.
 #[inline(always)]
 fn square(c: &[f64], n: usize) -> f64 {
-    let half = (n + 1) / 2;
+    let half = n.div_ceil(2);
     let pairs: f64 = c[..half].iter().zip(c[n + 1 - half..=n].iter().rev()).map(|(a, b)| a * b).sum();
     let middle = if n % 2 == 0 { c[n / 2] * c[n / 2] } else { 0.0 };
     2.0 * pairs + middle
