@@ -41,8 +41,9 @@
 //! and Jacobi field at `y` follow it to first order (`∂u'/∂s = J'`, `∂J/∂s = K`), errors second
 //! order in `δs` like the miss. Shots far from the target are integrated coarsely (Newton's step
 //! only needs them to a fraction of their miss); the last one, whose step is taken unconfirmed,
-//! at full tolerance. A typical short-way connection is one coarse shot from the first guess and
-//! one fine shot.
+//! at full tolerance. Each way's start is tabulated (`start_table`) for ends the table covers,
+//! close enough for the first shot to be the fine one: a typical connection is that one shot
+//! (from the first guesses alone, one or two coarse shots come before it).
 //!
 //! Density: turning `ψ` by `dψ` moves the ray at `φ = Δφ` radially by `∂r/∂ψ = −J/u_y² · ds/dψ`,
 //! with `ds/dψ = u_x/(σ_x sin²ψ)`; turning the plane by `dχ` about the axis through the centre
