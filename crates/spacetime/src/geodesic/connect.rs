@@ -199,20 +199,48 @@ impl Connection {
         tangent_triangle(self.waypoints.axis(), (x, self.start_tangent), (y, self.end_tangent))
     }
 
-    /// Triangles that together hold the ray from `x` to `y`, one for each piece between its
-    /// waypoints (each sweeping less than a radian), as [`Connection::enclosing_triangle`] bounds
-    /// the whole short way; `None` for a piece that turns by π or more, and a single `None` where
-    /// the waypoints were not kept. This bounds the long way round too.
+    /// Triangles that together hold the ray from `x` to `y`, each the tangent triangle of a piece
+    /// between waypoints, as [`Connection::enclosing_triangle`] bounds the whole short way; `None`
+    /// for a piece that turns too little or too much to bound, and a single `None` where the
+    /// waypoints were not kept. This bounds the long way round too, whose consecutive pieces are
+    /// merged while the merged piece sweeps at most [`MERGED_SWEEP`] and turns at most
+    /// [`MERGED_TURN`]: fewer, still small triangles (it has a dozen waypoints). The short way
+    /// is asked for its pieces only where its one triangle came near something, and there
+    /// merged triangles would mostly come near it again.
     pub fn enclosing_triangles(&self, x: [f64; 3], y: [f64; 3]) -> impl Iterator<Item = Option<[[f64; 3]; 3]>> + '_ {
         let (w, axis) = (&self.waypoints, self.waypoints.axis());
         let kept = w.count <= MAX_WAYPOINTS;
-        let inner = w.points[..w.count.min(MAX_WAYPOINTS)].iter().map(|p| w.world(p));
-        let ends = std::iter::once((x, self.start_tangent)).chain(inner).chain(std::iter::once((y, self.end_tangent)));
-        let pieces = ends.clone().zip(ends.skip(1)).map(move |(a, b)| tangent_triangle(axis, a, b));
+        let inner = w.points[..w.count.min(MAX_WAYPOINTS)].iter().map(|p| (p[0], w.world(p)));
+        let mut knots = std::iter::once((0.0, (x, self.start_tangent)))
+            .chain(inner)
+            .chain(std::iter::once((self.swept, (y, self.end_tangent))))
+            .peekable();
+        let (mut start, merge) = (knots.next(), self.swept > PI);
+        let pieces = std::iter::from_fn(move || {
+            let (phi, knot) = start?;
+            let mut end = knots.next()?;
+            while let Some(&(next_phi, next)) = knots.peek() {
+                if !merge || next_phi - phi > MERGED_SWEEP || dot3(&knot.1, &next.1) < MERGED_TURN.cos() {
+                    break;
+                }
+                end = (next_phi, next);
+                knots.next();
+            }
+            start = Some(end);
+            Some(tangent_triangle(axis, knot, end.1))
+        });
         let none_kept = (!kept).then_some(None);
         none_kept.into_iter().chain(pieces.take_while(move |_| kept))
     }
 }
+
+/// Most azimuth a merged piece of [`Connection::enclosing_triangles`] sweeps: below π, which
+/// tangent triangles need.
+const MERGED_SWEEP: f64 = 2.0;
+/// Most a merged piece turns: its tangents then meet within `tan(MERGED_TURN/2)` (0.41) of its
+/// chord's length, so the triangle stays near the ray. (At π/3 as many room connections were
+/// cleared without tracing, but more near a ball beside the hole were traced.)
+const MERGED_TURN: f64 = std::f64::consts::FRAC_PI_4;
 
 impl Waypoints {
     /// The axis the ray sweeps round (its plane's normal).
