@@ -203,8 +203,8 @@ impl Connection {
     /// between waypoints, as [`Connection::enclosing_triangle`] bounds the whole short way; `None`
     /// for a piece that turns too little or too much to bound, and a single `None` where the
     /// waypoints were not kept. This bounds the long way round too, whose consecutive pieces are
-    /// merged while the merged piece sweeps at most [`MERGED_SWEEP`] and turns at most
-    /// [`MERGED_TURN`]: fewer, still small triangles (it has a dozen waypoints). The short way
+    /// merged while the merged piece sweeps at most 2 rad and turns at most 45° (`MERGED_SWEEP`,
+    /// `MERGED_TURN_COS`): fewer, still small triangles (it has a dozen waypoints). The short way
     /// is asked for its pieces only where its one triangle came near something, and there
     /// merged triangles would mostly come near it again.
     pub fn enclosing_triangles(&self, x: [f64; 3], y: [f64; 3]) -> impl Iterator<Item = Option<[[f64; 3]; 3]>> + '_ {
@@ -220,7 +220,7 @@ impl Connection {
             let (phi, knot) = start?;
             let mut end = knots.next()?;
             while let Some(&(next_phi, next)) = knots.peek() {
-                if !merge || next_phi - phi > MERGED_SWEEP || dot3(&knot.1, &next.1) < MERGED_TURN.cos() {
+                if !merge || next_phi - phi > MERGED_SWEEP || dot3(&knot.1, &next.1) < MERGED_TURN_COS {
                     break;
                 }
                 end = (next_phi, next);
@@ -237,10 +237,10 @@ impl Connection {
 /// Most azimuth a merged piece of [`Connection::enclosing_triangles`] sweeps: below π, which
 /// tangent triangles need.
 const MERGED_SWEEP: f64 = 2.0;
-/// Most a merged piece turns: its tangents then meet within `tan(MERGED_TURN/2)` (0.41) of its
-/// chord's length, so the triangle stays near the ray. (At π/3 as many room connections were
-/// cleared without tracing, but more near a ball beside the hole were traced.)
-const MERGED_TURN: f64 = std::f64::consts::FRAC_PI_4;
+/// Cosine of the most a merged piece turns, 45°: its tangents then meet within `tan(45°/2)` (0.41)
+/// of its chord's length, so the triangle stays near the ray. (At 60° as many room connections
+/// were cleared without tracing, but more near a ball beside the hole were traced.)
+const MERGED_TURN_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
 impl Waypoints {
     /// The axis the ray sweeps round (its plane's normal).
@@ -316,7 +316,7 @@ pub(super) fn solve(
     let short = sin.atan2(cos);
     let e2 = normalize3(&std::array::from_fn(|i| yh[i] - cos * xh[i]));
     let (ux, uy) = (1.0 / rx, 1.0 / ry);
-    let slope_scale = ux * (1.0 - 2.0 * metric.mass * ux).sqrt();
+    let slope_scale = slope_scale(metric.mass, ux);
     let m = metric.mass;
     // Rays leaving inward at more than the critical angle `ψ_c` (impact parameter
     // b = sin ψ/(u_x √(1 − 2Mu_x)) below 3√3 M) are captured. Inside the photon sphere the
@@ -480,7 +480,12 @@ fn first_guess(mass: f64, ux: f64, uy: f64, cos: f64, sin: f64) -> f64 {
 /// `sin ψ_c`, the sine of the critical angle at `u_x` (outside the photon sphere): rays leaving
 /// inward at more than `ψ_c` fall into the hole.
 fn critical_sin(mass: f64, ux: f64) -> f64 {
-    3.0 * 3f64.sqrt() * mass * ux * (1.0 - 2.0 * mass * ux).sqrt()
+    3.0 * 3f64.sqrt() * mass * slope_scale(mass, ux)
+}
+
+/// `u_x/σ_x = u_x √(1 − 2Mu_x)`: the start slope of (1) is `s = −(u_x/σ_x) cot ψ`.
+fn slope_scale(mass: f64, ux: f64) -> f64 {
+    ux * (1.0 - 2.0 * mass * ux).sqrt()
 }
 
 /// The parameter each way is shot, guessed and tabulated by, scale-free in `M`: the short way
@@ -488,7 +493,7 @@ fn critical_sin(mass: f64, ux: f64) -> f64 {
 /// `sin ψ = sin ψ_c (1 + ε)`, in which the sweep is nearly linear near the photon sphere.
 pub(super) fn start_parameter(way: Way, mass: f64, ux: f64, psi: f64) -> f64 {
     match way {
-        Way::Short => -mass * ux * (1.0 - 2.0 * mass * ux).sqrt() / psi.tan(),
+        Way::Short => -mass * slope_scale(mass, ux) / psi.tan(),
         Way::Long => (psi.sin() / critical_sin(mass, ux) - 1.0).ln(),
     }
 }
@@ -496,7 +501,7 @@ pub(super) fn start_parameter(way: Way, mass: f64, ux: f64, psi: f64) -> f64 {
 /// The start angle `ψ` of [`start_parameter`] `parameter`.
 fn start_angle(way: Way, mass: f64, ux: f64, parameter: f64) -> f64 {
     match way {
-        Way::Short => (ux * (1.0 - 2.0 * mass * ux).sqrt()).atan2(-parameter / mass),
+        Way::Short => slope_scale(mass, ux).atan2(-parameter / mass),
         Way::Long => PI - (critical_sin(mass, ux) * (1.0 + parameter.exp())).min(1.0).asin(),
     }
 }
