@@ -97,6 +97,11 @@ pub(super) fn sample_point(world: &World, at: &Arrival, u_choice: f64, u_point: 
 }
 
 impl LightPoint {
+    /// The sampled point, in world coordinates.
+    pub(super) fn position(&self) -> Vec3 {
+        self.point
+    }
+
     /// Joins the shading point of `at` to this point by the ray going `way` round the hole;
     /// `None` if there is none or it carries nothing.
     pub(super) fn join(&self, propagator: &Propagator, at: &Arrival, way: Way) -> Option<Candidate> {

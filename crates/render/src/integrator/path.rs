@@ -20,7 +20,7 @@ use crate::propagator::{Arrival, Propagator, RayEnd};
 use crate::sampling::{power_heuristic, Sampler};
 use crate::shape::offset_origin;
 use crate::world::World;
-use spacetime::geodesic::connect::Way;
+use spacetime::geodesic::connect::{short_way_arrives_behind, Way};
 use spacetime::Region;
 
 /// Paths start surviving Russian roulette unconditionally for this many bounces.
@@ -186,7 +186,9 @@ impl<'a> PathIntegrator<'a> {
         };
         let mut sum = Rgb::ZERO;
         for way in Way::BOTH {
-            if u_way >= geodesic_light::way_probability(way) {
+            if u_way >= geodesic_light::way_probability(way)
+                || (way == Way::Short && reflects_none(at, shading, &point))
+            {
                 continue;
             }
             if let Some(light) = point.join(self.propagator, at, way) {
@@ -246,6 +248,17 @@ impl<'a> PathIntegrator<'a> {
         let weight = power_heuristic(light_pdf, bsdf.pdf(wo, wi_local));
         f * le * (weight / light_pdf) as f32
     }
+}
+
+/// Whether an opaque surface reflects none of the light coming the short way from `point`: when
+/// its front (the side `wo` is on) faces the centre and the point lies on or behind its tangent
+/// plane, the short way leaves it into the back ([`short_way_arrives_behind`], reversed). Such
+/// points are not joined at all (the surface behind a one-sided light is the other case, dropped
+/// by the connection solver).
+fn reflects_none(at: &Arrival, shading: &Shading<'_>, point: &geodesic_light::LightPoint) -> bool {
+    let front = if shading.wo.z >= 0.0 { at.hit.ns } else { -at.hit.ns };
+    !shading.bsdf.has_transmission()
+        && short_way_arrives_behind(front.to_array(), point.position().to_array(), at.hit.p.to_array())
 }
 
 /// What direct lighting needs of a shading point.

@@ -308,6 +308,9 @@ pub(super) fn solve(
     if !(rx > horizon && ry > horizon) {
         return None;
     }
+    if way == Way::Short && facing.is_some_and(|n| short_way_arrives_behind(n, x, y)) {
+        return None;
+    }
     let (xh, yh) = (scale3(&x, 1.0 / rx), scale3(&y, 1.0 / ry));
     let (cos, sin) = (dot3(&xh, &yh), norm3(&cross3(&xh, &yh)));
     if sin < MIN_SIN_SWEEP {
@@ -392,6 +395,26 @@ pub(super) fn solve(
         (psi, s) = (next, slope_at(next));
     }
     None
+}
+
+/// Whether the short way from `from` to `to` can only reach the plane through `to` with normal
+/// `n` from behind (travelling along `n`): so when the centre lies on or in front of that plane
+/// and `from` on or behind it. Reversed, the same ray leaves `to` into the side away from `n`:
+/// an opaque surface at `to` whose front faces the centre reflects none of it.
+///
+/// Proof. In the ray's plane the surface's plane leaves a line, `u_L(φ) = cos(φ − φ_L)/d` in
+/// polar coordinates about the centre (`d > 0` its distance), and the centre's side is
+/// `u > u_L`. The ray's `g = u − u_L` obeys `g'' + g = 3Mu² > 0` by (1), since `u_L'' + u_L = 0`.
+/// It starts on or behind the line (`g(0) ≤ 0`) and reaches it at `Δφ < π`. Arriving from the
+/// front needs a last crossing `φ₁ ∈ [0, Δφ)` with `g > 0` on `(φ₁, Δφ)`; with `w = sin(φ − φ₁)`,
+/// positive there, `∫(g'' + g) w dφ = [g'w − gw']` over `(φ₁, Δφ)` gives
+/// `g'(Δφ) sin(Δφ − φ₁) > 0`: `g` rises through zero at `Δφ`, so it was negative just before, a
+/// contradiction (Sturm's comparison, as for equation (2)). The ray bends towards the centre too
+/// little to come back out of its side. A line through the centre (`d = 0`) is met at two
+/// azimuths π apart, so a sweep below π crosses it once at most and cannot come back to it.
+pub fn short_way_arrives_behind(n: [f64; 3], from: [f64; 3], to: [f64; 3]) -> bool {
+    let at = dot3(&n, &to);
+    at <= 0.0 && dot3(&n, &from) <= at
 }
 
 /// Newton's step in `s` from a shot that ended in `end` missing `u_y` by `f`, as far as `ψ` can
