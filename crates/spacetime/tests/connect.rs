@@ -31,10 +31,13 @@ fn without_mass_the_connection_is_the_straight_line_with_density_one_over_d_squa
     for mass in [0.0, 1e-9] {
         let hole = Schwarzschild::new(mass);
         for (x, y) in PAIRS {
-            // Straight lines sweep less than π: there is no long way round.
-            assert!(connect(&hole, x, y, Way::Long).is_none(), "M = {mass}, {x:?} → {y:?}");
-            let c = connect(&hole, x, y, Way::Short).unwrap();
             let d = distance(x, y);
+            // Straight lines sweep less than π: there is no long way round. The least mass has
+            // one, round its photon sphere at 3·10⁻⁹, whose image of `y` is vanishingly small.
+            if let Some(long) = connect(&hole, x, y, Way::Long) {
+                assert!(mass > 0.0 && long.solid_angle_per_area * d * d < 1e-12, "{x:?} → {y:?}");
+            }
+            let c = connect(&hole, x, y, Way::Short).unwrap();
             let line = normalize3(&sub(y, x));
             // Mass 1e-9 bends by ~4M/b ≲ 1e-9 rad and changes the density by as little; the
             // shooting integrates to a relative 1e-7 per step and stops at a miss of 1e-6 in 1/r.

@@ -324,38 +324,39 @@ pub(super) fn solve(
     // Rays leaving inward at more than the critical angle `ψ_c` (impact parameter
     // b = sin ψ/(u_x √(1 − 2Mu_x)) below 3√3 M) are captured. Inside the photon sphere the
     // critical angle lies on the outward side instead, and the long way is not sought.
-    if way == Way::Long && !(rx > 3.0 * m) {
+    if way == Way::Long && !(rx > 3.0 * m && m > 0.0) {
         return None;
     }
     // The long way sweeps `2π − Δφ` in the plane's other sense: the same cosine, the other sine.
-    let (e2, sweep, sweep_sin_cos, mut hi) = match way {
-        Way::Short => (e2, short, (sin, cos), PI),
-        Way::Long => (scale3(&e2, -1.0), 2.0 * PI - short, (-sin, cos), PI - critical_sin(m, ux).asin()),
+    let (e2, sweep, sweep_sin_cos) = match way {
+        Way::Short => (e2, short, (sin, cos)),
+        Way::Long => (scale3(&e2, -1.0), 2.0 * PI - short, (-sin, cos)),
     };
     let at_y = PlaneAxes::at_sin_cos(&xh, &e2, sweep_sin_cos);
-    let guess = guessed_parameter(way, m, ux, uy, cos, sin, sweep);
     let correction = tabulated.then(|| start_table(way).correction(m * ux, m * uy, sweep)).flatten();
     // A tabulated start is close enough for the first shot to be the fine one.
     let mut fine = correction.is_some();
-    let slope_at = |psi: f64| -slope_scale / psi.tan();
-    let mut psi = start_angle(way, m, ux, guess + correction.unwrap_or(0.0));
-    let mut s = slope_at(psi);
-    let mut lo = 0.0;
+    let mut s = match way {
+        // The short way's parameter is `Ms`: the guess, the slope of `first_guess`, holds
+        // without mass too.
+        Way::Short => first_guess(m, ux, uy, cos, sin) + correction.map_or(0.0, |c| c / m),
+        Way::Long => {
+            let guess = guessed_parameter(way, m, ux, uy, cos, sin, sweep);
+            long_start_slope(m, ux, guess + correction.unwrap_or(0.0))
+        }
+    };
+    let mut bracket = Bracket::of(way, m, ux);
     let mut track = Track::new();
     for _ in 0..MAX_ITERATIONS {
         let rtol = if fine { final_rtol(way) } else { RTOL_COARSE };
-        let next = match shoot(metric, ux, s, sweep, rtol, &mut track)? {
-            Shot::Escapes => {
-                lo = psi;
-                0.5 * (lo + hi)
-            }
-            Shot::Captured => {
-                hi = psi;
-                0.5 * (lo + hi)
-            }
+        match shoot(metric, ux, s, sweep, rtol, &mut track)? {
+            Shot::Escapes => bracket.low = s,
+            Shot::Captured => bracket.high = s,
             Shot::Reaches(end) => {
                 let f = end[0] - uy;
-                let (newton, step, remaining) = newton_step(&end, f, s, slope_scale);
+                // Newton's step, and the miss it leaves to second order, equation (4).
+                let step = -f / end[2];
+                let remaining = (0.5 * end[4] * step * step).abs();
                 if remaining <= FINE_GATE * uy
                     && facing
                         .is_some_and(|n| dot3(&n, &world_tangent(&at_y, uy, end[1] + end[3] * step)) > FACING_MARGIN)
@@ -376,25 +377,52 @@ pub(super) fn solve(
                 // A shot's sign is trusted only well above its own integration error.
                 if f.abs() > 10.0 * rtol * uy {
                     if f < 0.0 {
-                        lo = psi;
+                        bracket.low = s;
                     } else {
-                        hi = psi;
+                        bracket.high = s;
                     }
                 }
                 fine |= remaining <= FINE_GATE * uy;
-                if newton > lo && newton < hi {
-                    (psi, s) = (newton, s + step);
+                if s + step > bracket.low && s + step < bracket.high {
+                    s += step;
                     continue;
                 }
-                0.5 * (lo + hi)
             }
-        };
-        if hi - lo <= 1e-15 {
-            return None;
         }
-        (psi, s) = (next, slope_at(next));
+        s = bracket.bisect(slope_scale)?;
     }
     None
+}
+
+/// The start slopes known to fall short (`low`: the ray escapes or passes outside `y`) and to
+/// overshoot (`high`: captured or inside `y`). Slopes rise with the start angle,
+/// `s = −(u_x/σ_x) cot ψ`: Newton's steps are tested against the slopes, bisection halves the
+/// angles (the slopes run to infinity at `ψ = 0` and `π`).
+struct Bracket {
+    low: f64,
+    high: f64,
+}
+
+impl Bracket {
+    /// All rays the short way; the long way's start inward of its critical angle `ψ_c`, where
+    /// `cot(π − ψ_c) = −√(1 − sin²ψ_c)/sin ψ_c`.
+    fn of(way: Way, mass: f64, ux: f64) -> Self {
+        let high = match way {
+            Way::Short => f64::INFINITY,
+            Way::Long => {
+                let critical = critical_sin(mass, ux);
+                slope_scale(mass, ux) * (1.0 - critical * critical).sqrt() / critical
+            }
+        };
+        Self { low: f64::NEG_INFINITY, high }
+    }
+
+    /// The slope at the middle angle of the bracket, `None` once it is closed.
+    fn bisect(&self, slope_scale: f64) -> Option<f64> {
+        let angle = |s: f64| slope_scale.atan2(-s);
+        let (low, high) = (angle(self.low), angle(self.high));
+        (high - low > 1e-15).then(|| -slope_scale / (0.5 * (low + high)).tan())
+    }
 }
 
 /// Whether the short way from `from` to `to` can only reach the plane through `to` with normal
@@ -415,16 +443,6 @@ pub(super) fn solve(
 pub fn short_way_arrives_behind(n: [f64; 3], from: [f64; 3], to: [f64; 3]) -> bool {
     let at = dot3(&n, &to);
     at <= 0.0 && dot3(&n, &from) <= at
-}
-
-/// Newton's step in `s` from a shot that ended in `end` missing `u_y` by `f`, as far as `ψ` can
-/// represent it (near the critical angle an ulp of `ψ` is a large step in `s`): the new `ψ`, the
-/// step in `s`, and the miss that remains after it, to second order (equation 4).
-fn newton_step(end: &[f64; 6], f: f64, s: f64, slope_scale: f64) -> (f64, f64, f64) {
-    let psi = slope_scale.atan2(-(s - f / end[2]));
-    let step = -slope_scale / psi.tan() - s;
-    let remaining = (f + end[2] * step).abs() + (0.5 * end[4] * step * step).abs();
-    (psi, step, remaining)
 }
 
 /// The direction a ray leaves `x` in: `sin ψ` and `cos ψ`, from the outward radial direction.
@@ -521,12 +539,11 @@ pub(super) fn start_parameter(way: Way, mass: f64, ux: f64, psi: f64) -> f64 {
     }
 }
 
-/// The start angle `ψ` of [`start_parameter`] `parameter`.
-fn start_angle(way: Way, mass: f64, ux: f64, parameter: f64) -> f64 {
-    match way {
-        Way::Short => slope_scale(mass, ux).atan2(-parameter / mass),
-        Way::Long => PI - (critical_sin(mass, ux) * (1.0 + parameter.exp())).min(1.0).asin(),
-    }
+/// The long way's start slope `s` at [`start_parameter`] `ln ε`: `sin ψ = sin ψ_c (1 + ε)` on the
+/// inward side (`ψ > π/2`), where `−cot ψ = √(1 − sin²ψ)/sin ψ`.
+fn long_start_slope(mass: f64, ux: f64, ln_epsilon: f64) -> f64 {
+    let sin = (critical_sin(mass, ux) * (1.0 + ln_epsilon.exp())).min(1.0);
+    slope_scale(mass, ux) * (1.0 - sin * sin).sqrt() / sin
 }
 
 /// First guess of [`start_parameter`] for the ray from `u_x` to `u_y` sweeping `sweep` (the short
