@@ -40,8 +40,8 @@ fn without_mass_the_connection_is_the_straight_line_with_density_one_over_d_squa
             let c = connect(&hole, x, y, Way::Short).unwrap();
             let line = normalize3(&sub(y, x));
             // Mass 1e-9 bends by ~4M/b ≲ 1e-9 rad and changes the density by as little; the
-            // shooting integrates to a relative 1e-7 per step and stops at a miss of 1e-6 in 1/r.
-            let tol = 1e-6;
+            // short way integrates to a relative 1e-6 per step and stops at a miss of 1e-6 in 1/r.
+            let tol = 1e-5;
             assert!(distance(c.start, line) < tol, "M = {mass}, {x:?} → {y:?}: start {:?}", c.start);
             assert!(distance(c.end, line) < tol && distance(c.end_tangent, line) < tol);
             let rel = c.solid_angle_per_area * d * d - 1.0;
@@ -92,9 +92,10 @@ fn assert_matches_traced_bundle(hole: &Schwarzschild, x: [f64; 3], y: [f64; 3], 
     // The connecting ray reaches y, arriving along the reported directions.
     let (hit, direction) = crossing(hole, x, c.start, y, t);
     // The shooting stops at a relative miss of 1e-6 in 1/r (its last Newton step's second-order
-    // term, not shot again).
-    assert!(distance(hit, y) < 1e-6 * norm3(&y), "{x:?} → {y:?} {way:?}: reaches {hit:?}");
-    assert!(distance(direction, c.end) < 1e-6, "{x:?} → {y:?} {way:?}: arrives along {direction:?}, not {:?}", c.end);
+    // term, not shot again), the short way's steps integrated to a relative 1e-6: within 1e-5,
+    // a tenth of the chord tolerance ε (1e-4 of the scene's radius) the tracer finds hits to.
+    assert!(distance(hit, y) < 1e-5 * norm3(&y), "{x:?} → {y:?} {way:?}: reaches {hit:?}");
+    assert!(distance(direction, c.end) < 1e-5, "{x:?} → {y:?} {way:?}: arrives along {direction:?}, not {:?}", c.end);
     // A cone of four rays at angle δ around the start direction: central differences of their
     // crossings give the beam's cross-section per solid angle.
     let a = normalize3(&cross3(&c.start, &[0.3, 0.5, 0.8]));
@@ -111,7 +112,7 @@ fn assert_matches_traced_bundle(hole: &Schwarzschild, x: [f64; 3], y: [f64; 3], 
     let area_per_solid_angle = norm3(&cross3(&spread(a), &spread(b)));
     let ratio = c.solid_angle_per_area * area_per_solid_angle;
     // Tracing noise 1e-12 · r / δ ≈ 1e-5 at most (seen: ≤ 1.3e-6); the shooting's own tolerance,
-    // 1e-7 per step.
+    // 1e-6 per step the short way, 1e-8 the long way.
     assert!((ratio - 1.0).abs() < 1e-5, "{x:?} → {y:?} (sweep {sweep}): measured/predicted = {ratio}");
 }
 
@@ -222,9 +223,9 @@ fn the_short_way_round_lies_in_the_triangle_of_its_chord_and_end_tangents() {
         assert_eq!((triangle[0], triangle[2]), (x, y));
         let scale = norm3(&sub(y, x));
         for p in ray_points(&hole, x, c.start, c.swept) {
-            // The ray misses y by up to 1e-6 r (the shooting's tolerance).
+            // The ray misses y by up to 1e-5 r (the shooting's tolerance).
             let out = outside(p, triangle);
-            assert!(out < 1e-6 * scale, "{x:?} → {y:?}: {p:?} lies {out:e} outside {triangle:?}");
+            assert!(out < 1e-5 * scale, "{x:?} → {y:?}: {p:?} lies {out:e} outside {triangle:?}");
         }
     }
     // Only rays turning by π or more, round the photon sphere, have no triangle.
@@ -248,7 +249,7 @@ fn both_ways_round_lie_in_the_triangles_between_their_waypoints() {
             let scale = norm3(&sub(y, x));
             for p in ray_points(&hole, x, c.start, c.swept) {
                 let out = triangles.iter().map(|t| outside(p, *t)).fold(f64::INFINITY, f64::min);
-                assert!(out < 1e-6 * scale, "{x:?} → {y:?} {way:?}: {p:?} lies {out:e} outside all");
+                assert!(out < 1e-5 * scale, "{x:?} → {y:?} {way:?}: {p:?} lies {out:e} outside all");
             }
         }
         assert!(tried > 50 && bounded as f64 > 0.95 * tried as f64, "{way:?}: {bounded} of {tried} bounded");
