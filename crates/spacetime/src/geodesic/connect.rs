@@ -19,8 +19,8 @@
 //! Since `1 − 6Mu ≤ 1`, Sturm's comparison theorem puts the first zero of `J` at `φ ≥ π`, so for
 //! every `Δφ ∈ (0, π]` the radius `u(Δφ; ψ)` is strictly increasing in `ψ`: the ray that sweeps
 //! the short way round (`Δφ ≤ π`) is unique where it exists, and a bracketed Newton iteration on
-//! `ψ ∈ (0, π)` finds it. Rays that escape before `Δφ` bracket it from below, captured ones from
-//! above.
+//! the start slope `s`, which rises with `ψ ∈ (0, π)`, finds it. Rays that escape before `Δφ`
+//! bracket it from below, captured ones from above.
 //!
 //! The long way round sweeps `2π − Δφ` in the plane's other sense. Such rays pass close to the
 //! photon sphere (`b` just above `3√3 M`), where `1 − 6Mu < 0` and `J` grows instead of turning:
