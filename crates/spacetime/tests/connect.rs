@@ -293,7 +293,7 @@ fn rays_reaching_a_one_sided_surface_from_behind_are_dropped() {
 /// the front, so the centre's side matters.
 #[test]
 fn the_short_way_from_behind_a_plane_facing_the_centre_arrives_behind_it() {
-    let mut uniform = uniform(0x5eed_0f_91a9e);
+    let mut uniform = uniform(0x05ee_d0f9_1a9e);
     let (mut checked, mut round_to_front) = (0, 0);
     for (hole, x, y) in test_pairs(23, 3000) {
         for _ in 0..4 {
