@@ -1,5 +1,5 @@
 //! A procedural Earth-like planet for a sphere's `uv` (longitude `u`, latitude `v`, as
-//! [`crate::shape::sphere`] defines them): oceans, continents coloured by climate, ice caps and
+//! [`Shape::Sphere`](crate::shape::Shape::Sphere) defines them): oceans, continents coloured by climate, ice caps and
 //! clouds.
 //!
 //! Everything is a function of the point on the unit sphere, evaluated with 3-D fractal noise

@@ -1,13 +1,13 @@
 //! Stochastic progressive photon mapping, SPPM (Hachisuka & Jensen 2009; pbrt-v3 §16.2), in
 //! curved spacetime.
 //!
-//! Every iteration traces one camera path per pixel to its visible point (see [`visible`]),
-//! then a fixed number of photons from the lights and skies (see [`emit`], [`aim`], [`sky`],
-//! [`trace`]), gathered by the visible points within each pixel's radius, which shrinks from
-//! iteration to iteration (see [`pixel`]). Lights that camera paths rarely hit by chance — a lamp
+//! Every iteration traces one camera path per pixel to its visible point (see `visible`),
+//! then a fixed number of photons from the lights and skies (see `emit`, `aim`, `sky`,
+//! `trace`), gathered by the visible points within each pixel's radius, which shrinks from
+//! iteration to iteration (see `pixel`). Lights that camera paths rarely hit by chance — a lamp
 //! in a room seen through a wormhole's throat — are found from their side instead. Emitters of
 //! infinite area, which photons cannot start from, and skies over unbounded receivers are
-//! gathered by paths continued from the visible points (see [`background`]). The estimate is
+//! gathered by paths continued from the visible points (see `background`). The estimate is
 //! consistent: it converges to the path tracer's image as iterations grow.
 //!
 //! Determinism: camera paths draw from the stream of (seed, pixel, iteration); photons are
