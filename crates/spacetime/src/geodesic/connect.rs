@@ -438,9 +438,9 @@ impl Bracket {
 /// front needs a last crossing `φ₁ ∈ [0, Δφ)` with `g > 0` on `(φ₁, Δφ)`; with `w = sin(φ − φ₁)`,
 /// positive there, `∫(g'' + g) w dφ = [g'w − gw']` over `(φ₁, Δφ)` gives
 /// `g'(Δφ) sin(Δφ − φ₁) > 0`: `g` rises through zero at `Δφ`, so it was negative just before, a
-/// contradiction (Sturm's comparison, as for equation (2)). The ray bends towards the centre too
-/// little to come back out of its side. A line through the centre (`d = 0`) is met at two
-/// azimuths π apart, so a sweep below π crosses it once at most and cannot come back to it.
+/// contradiction (Sturm's comparison, as for equation (2)): within a sweep below π a ray that has
+/// crossed to the centre's side cannot come back to the plane. A line through the centre (`d = 0`)
+/// is met at two azimuths π apart, so a sweep below π crosses it once at most.
 pub fn short_way_arrives_behind(n: [f64; 3], from: [f64; 3], to: [f64; 3]) -> bool {
     let at = dot3(&n, &to);
     at <= 0.0 && dot3(&n, &from) <= at
