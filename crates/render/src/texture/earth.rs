@@ -1,6 +1,6 @@
 //! A procedural Earth-like planet for a sphere's `uv` (longitude `u`, latitude `v`, as
-//! [`Shape::Sphere`](crate::shape::Shape::Sphere) defines them): oceans, continents coloured by climate, ice caps and
-//! clouds.
+//! [`Shape::Sphere`](crate::shape::Shape::Sphere) defines them): oceans, continents coloured by
+//! climate, ice caps and clouds.
 //!
 //! Everything is a function of the point on the unit sphere, evaluated with 3-D fractal noise
 //! (fBm of Perlin noise), so the texture has no seam at the date line and no pinching at the

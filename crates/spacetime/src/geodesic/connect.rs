@@ -312,6 +312,12 @@ pub(super) fn solve(
     if way == Way::Short && facing.is_some_and(|n| short_way_arrives_behind(n, x, y)) {
         return None;
     }
+    // Rays leaving inward at more than the critical angle `ψ_c` (impact parameter
+    // b = sin ψ/(u_x √(1 − 2Mu_x)) below 3√3 M) are captured. Inside the photon sphere the
+    // critical angle lies on the outward side instead, and the long way is not sought.
+    if way == Way::Long && !(rx > 3.0 * metric.mass && metric.mass > 0.0) {
+        return None;
+    }
     let (xh, yh) = (scale3(&x, 1.0 / rx), scale3(&y, 1.0 / ry));
     let (cos, sin) = (dot3(&xh, &yh), norm3(&cross3(&xh, &yh)));
     if sin < MIN_SIN_SWEEP {
@@ -322,12 +328,6 @@ pub(super) fn solve(
     let (ux, uy) = (1.0 / rx, 1.0 / ry);
     let slope_scale = slope_scale(metric.mass, ux);
     let m = metric.mass;
-    // Rays leaving inward at more than the critical angle `ψ_c` (impact parameter
-    // b = sin ψ/(u_x √(1 − 2Mu_x)) below 3√3 M) are captured. Inside the photon sphere the
-    // critical angle lies on the outward side instead, and the long way is not sought.
-    if way == Way::Long && !(rx > 3.0 * m && m > 0.0) {
-        return None;
-    }
     // The long way sweeps `2π − Δφ` in the plane's other sense: the same cosine, the other sine.
     let (e2, sweep, sweep_sin_cos) = match way {
         Way::Short => (e2, short, (sin, cos)),
