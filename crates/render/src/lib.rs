@@ -8,6 +8,7 @@ pub mod accel;
 pub mod camera;
 pub mod camera_path;
 pub mod color;
+pub mod crossing;
 pub mod film;
 pub mod geometry;
 pub mod image_io;

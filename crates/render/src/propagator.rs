@@ -9,16 +9,19 @@
 //! is a hit on the ray to that tolerance. A piece of a step that nothing comes near is not
 //! split: in Schwarzschild spacetime, where every ray bends towards the hole, a piece lies in the
 //! triangle of its chord and end tangents, and one triangle test clears it; elsewhere a box
-//! about the chord, widened by twice the sagitta, does.
+//! about the chord, widened by twice the sagitta, does. Where only flat objects come near such a
+//! triangle, the piece is not split either: its crossings of their planes are solved on the curve
+//! itself ([`crate::crossing`]), to a hundredth of `epsilon`.
 //!
 //! Local frames have their axes aligned with the world's: directions handed in and out are in
 //! the static observer's orthonormal frame (the normal observer's inside a Kerr ergosphere),
 //! which in curved space differs from the world coordinate directions by the metric.
 
+use crate::crossing::{crossing, Meeting};
 use crate::geometry::{Ray, Vec3};
 use crate::settings::Intersection;
 use crate::shape::SurfaceHit;
-use crate::world::World;
+use crate::world::{Blockers, FlatBlockers, World};
 use spacetime::geodesic::connect::{connect_facing, Connection, Way};
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
 use spacetime::geodesic::tangent_triangle::tangent_triangle;
@@ -59,6 +62,11 @@ pub struct Arrival {
     /// follows the ray in its plane (`None` for straight and 4-D traced rays).
     pub swept: Option<f64>,
 }
+
+/// Crossings of flat objects are solved to this fraction of ε, far below what a chord finds
+/// (about ε, more on a plane met at a slant): the hit's point, direction and energy are then the
+/// curve's. On the black-hole room a crossing takes 2.2 Newton iterations (2.8 at 10⁻⁴).
+const CROSSING_TOLERANCE: f64 = 1e-2;
 
 /// How rays are propagated; built once per render.
 #[derive(Clone, Debug)]
@@ -273,7 +281,11 @@ impl Propagator {
                 }
                 PlaneStep::Curved { .. } => {
                     let axis = step.axis().filter(|_| bounded).map(Vec3::from_array);
-                    let curved = CurvedStep { knot: &knot, axis, leaves_origin };
+                    let motion = |theta: f64| {
+                        let (at, velocity) = step.motion(metric, theta);
+                        (Vec3::from_array(at), Vec3::from_array(velocity))
+                    };
+                    let curved = CurvedStep { knot: &knot, motion: Some(&motion), axis, leaves_origin };
                     self.curved(world, region, &curved, from, to)
                 }
             };
@@ -372,8 +384,10 @@ impl Propagator {
 
     /// The chord test of the piece of `step` from knot `a` to knot `b`. Nothing can be hit on a
     /// piece whose tangent triangle (where the ray bends one way) or else whose tube (the box
-    /// about its chord, widened by twice the sagitta) no object comes near; a piece within ε of
-    /// its chord is tested by the chord; any other is halved.
+    /// about its chord, widened by twice the sagitta) no object comes near. Where only flat
+    /// objects come near the triangle, the piece's crossings of their planes are solved on the
+    /// curve ([`crate::crossing`]). A piece within ε of its chord is tested by the chord; any
+    /// other is halved.
     fn curved_span(
         &self,
         world: &World,
@@ -387,8 +401,16 @@ impl Propagator {
         if let Some(corners) = triangle {
             // The ray's origin may lie on the surface it leaves.
             let touching = [step.leaves_origin && a.theta == 0.0, false, false];
-            if world.triangle_is_clear(region, corners, touching, self.epsilon) {
-                return None;
+            match world.triangle_blockers(region, corners, touching, self.epsilon) {
+                Blockers::Clear => return None,
+                Blockers::Flat(blockers) => {
+                    if let Some(found) =
+                        step.motion.and_then(|motion| self.cross_flat(world, region, motion, a, b, &blockers))
+                    {
+                        return found;
+                    }
+                }
+                Blockers::Unknown => {}
             }
         }
         let m = (step.knot)(0.5 * (a.theta + b.theta));
@@ -416,6 +438,49 @@ impl Propagator {
         Some(ChordHit { object, chord, t, theta: a.theta + (b.theta - a.theta) * t / len })
     }
 
+    /// The first hit on the piece of a step from knot `a` to knot `b`, whose position and velocity
+    /// are `motion(θ)`, among the flat objects `blockers` that come near its tangent triangle:
+    /// their planes' crossings solved on the curve, each checked against its object by a chord
+    /// across the plane there. `None` where a plane may be crossed twice: the piece is split.
+    fn cross_flat(
+        &self,
+        world: &World,
+        region: Region,
+        motion: &dyn Fn(f64) -> (Vec3, Vec3),
+        a: Knot,
+        b: Knot,
+        blockers: &FlatBlockers,
+    ) -> Option<Option<ChordHit>> {
+        let mut first: Option<ChordHit> = None;
+        for object in blockers.iter() {
+            let (point, normal) = world.supporting_plane(region, object)?;
+            let height = |x: Vec3| normal.dot(x - point);
+            let (s_a, s_b) = (height(a.at), height(b.at));
+            match Meeting::of(s_a, s_b, height(Vec3::ZERO)) {
+                Meeting::Never => continue,
+                Meeting::Maybe => return None,
+                Meeting::Once => {}
+            }
+            // Still on the starting side where an earlier object is hit: this plane comes later.
+            if first.is_some_and(|hit| (height(hit.chord.at(hit.t)) > 0.0) == (s_a > 0.0)) {
+                continue;
+            }
+            let tolerance = CROSSING_TOLERANCE * self.epsilon;
+            let (theta, x) = crossing(motion, point, normal, (a.theta, a.at), (b.theta, b.at), tolerance);
+            if first.is_some_and(|hit| hit.theta <= theta) {
+                continue;
+            }
+            // Along the normal, from the side the piece starts on: a chord that crosses the plane
+            // at the crossing however grazing the ray, and tells which side it came from.
+            let dir = if s_a > 0.0 { -normal } else { normal };
+            let chord = Ray::new(x - self.epsilon * dir, dir, 2.0 * self.epsilon);
+            if let Some(t) = world.object(region, object).shape.intersect(&chord) {
+                first = Some(ChordHit { object, chord, t, theta });
+            }
+        }
+        Some(first)
+    }
+
     /// The 4-D tracer, in the chart's axes: world vectors are rotated in with `to_chart` and
     /// chord points rotated back out.
     fn hamiltonian<M: KerrSchild>(
@@ -436,7 +501,7 @@ impl Propagator {
                 let s = step.at(theta);
                 Knot { theta, at: to_world * Vec3::new(s.x[1], s.x[2], s.x[3]), tangent: None }
             };
-            let curved = CurvedStep { knot: &knot, axis: None, leaves_origin: false };
+            let curved = CurvedStep { knot: &knot, motion: None, axis: None, leaves_origin: false };
             match self.curved(world, region, &curved, knot(0.0), knot(1.0)) {
                 Some(found) => {
                     arrival = Some((found, step.at(found.theta)));
@@ -479,6 +544,8 @@ struct Knot {
 /// A curved step as the chord test sees it.
 struct CurvedStep<'s> {
     knot: &'s dyn Fn(f64) -> Knot,
+    /// World position and velocity `dx/dθ`, where crossings can be solved on the step.
+    motion: Option<&'s dyn Fn(f64) -> (Vec3, Vec3)>,
     /// The axis the ray sweeps round, where it bends towards the centre all along: every piece
     /// of the step then lies in the triangle of its chord and end tangents.
     axis: Option<Vec3>,
@@ -596,16 +663,20 @@ mod tests {
     use crate::test_scenes::{floor_lamp_board_ball, uniform};
     use spacetime::Schwarzschild;
 
-    /// Clearing curved steps by their tangent triangles finds the hits that the tube test alone
-    /// finds, on rays leaving the floor (whose origins lie on it) and rays from inside the room.
+    /// Clearing curved steps by their tangent triangles, and solving their crossings of flat
+    /// objects on the curve, finds the hits that the tube test alone finds, on rays leaving the
+    /// floor (whose origins lie on it) and rays from inside the room; and it places them where
+    /// the tube test does with chords 64 times closer to the curve. (At the same ε, chords place
+    /// a hit on a plane met at 17° up to 3.4 ε from the exact crossing, as on ray 401.)
     #[test]
     fn tangent_triangles_find_the_hits_tubes_find() {
         let world = floor_lamp_board_ball();
         let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
         let bounded = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
         let tubes = Propagator { bound_arcs: false, ..bounded.clone() };
+        let fine = Propagator { epsilon: bounded.epsilon / 64.0, ..tubes.clone() };
         let mut uniform = uniform(11);
-        let mut hits = [0; 4];
+        let (mut hits, mut placed) = ([0; 4], 0);
         for k in 0..2000 {
             let direction = loop {
                 let d = Vec3::new(uniform(), uniform(), uniform()) * 2.0 - Vec3::ONE;
@@ -623,14 +694,12 @@ mod tests {
             if origin.length() < 1.0 {
                 continue;
             }
-            match (
-                bounded.trace(&world, Region::Upper, origin, direction),
-                tubes.trace(&world, Region::Upper, origin, direction),
-            ) {
+            let end = bounded.trace(&world, Region::Upper, origin, direction);
+            match (end, tubes.trace(&world, Region::Upper, origin, direction)) {
                 (RayEnd::Hit(a), RayEnd::Hit(b)) => {
                     assert_eq!(a.object, b.object, "ray {k} from {origin} along {direction}");
                     assert!(
-                        (a.hit.p - b.hit.p).length() < bounded.epsilon(),
+                        (a.hit.p - b.hit.p).length() < 4.0 * bounded.epsilon(),
                         "ray {k} from {origin:?} along {direction:?}: {} vs {}",
                         a.hit.p,
                         b.hit.p
@@ -643,8 +712,17 @@ mod tests {
                 (RayEnd::Captured, RayEnd::Captured) => {}
                 (a, b) => panic!("ray {k} from {origin} along {direction}: {a:?} vs {b:?}"),
             }
+            // The floor, the lamp and the board are flat: their hits are solved on the curve.
+            if let (RayEnd::Hit(a), RayEnd::Hit(f)) = (end, fine.trace(&world, Region::Upper, origin, direction)) {
+                if a.object == f.object && a.object < 3 {
+                    let off = (a.hit.p - f.hit.p).length();
+                    assert!(off < 0.1 * bounded.epsilon(), "ray {k} from {origin:?} along {direction:?}: {off}");
+                    placed += 1;
+                }
+            }
         }
         // Every object is met often enough for a missed hit to show: measured [209, 74, 76, 49].
         assert!(hits.iter().all(|&n| n >= 40), "hits per object {hits:?}");
+        assert!(placed > 200, "{placed} hits on flat objects compared");
     }
 }

@@ -90,6 +90,34 @@ impl RegionScene {
     }
 }
 
+/// The flat objects in the way of a triangle (indices; a few bytes to return, where their planes
+/// would be a few hundred).
+#[derive(Clone, Copy, Debug)]
+pub struct FlatBlockers {
+    objects: [u32; FlatBlockers::CAPACITY],
+    len: usize,
+}
+
+impl FlatBlockers {
+    /// More than this many are not listed: a piece of ray near so many objects is split instead.
+    pub const CAPACITY: usize = 8;
+
+    pub fn iter(&self) -> impl Iterator<Item = usize> + '_ {
+        self.objects[..self.len].iter().map(|&i| i as usize)
+    }
+}
+
+/// What may be in the way of a triangle ([`World::triangle_blockers`]).
+#[derive(Clone, Copy, Debug)]
+pub enum Blockers {
+    /// Nothing comes within the margin.
+    Clear,
+    /// Only these flat objects do.
+    Flat(FlatBlockers),
+    /// A curved object, or more flat ones than are listed.
+    Unknown,
+}
+
 /// A light chosen for sampling, with the probability of having chosen it.
 #[derive(Clone, Copy, Debug)]
 pub struct LightChoice {
@@ -164,6 +192,37 @@ impl World {
     /// Conservative: only flat shapes can be cleared (the triangle must keep strictly to one side
     /// of their plane); any other shape whose bounds reach the triangle's counts as in the way.
     pub fn triangle_is_clear(&self, region: Region, corners: [Vec3; 3], touching: [bool; 3], margin: f64) -> bool {
+        !self.scan_triangle(region, corners, touching, margin, |_, _| true)
+    }
+
+    /// The objects of `region` that [`World::triangle_is_clear`] finds in the way of a triangle,
+    /// when all of them are flat and there are at most [`FlatBlockers::CAPACITY`]: a piece of ray
+    /// inside the triangle can then only meet their planes.
+    pub fn triangle_blockers(&self, region: Region, corners: [Vec3; 3], touching: [bool; 3], margin: f64) -> Blockers {
+        let mut flat = FlatBlockers { objects: [0; FlatBlockers::CAPACITY], len: 0 };
+        let stopped = self.scan_triangle(region, corners, touching, margin, |object, flat_object| {
+            let Some(slot) = flat.objects.get_mut(flat.len).filter(|_| flat_object) else { return true };
+            *slot = object as u32;
+            flat.len += 1;
+            false
+        });
+        match (stopped, flat.len) {
+            (true, _) => Blockers::Unknown,
+            (false, 0) => Blockers::Clear,
+            (false, _) => Blockers::Flat(flat),
+        }
+    }
+
+    /// Calls `found(object, whether it is flat)` for each object in the way of a triangle (as
+    /// [`World::triangle_is_clear`] counts them) until it returns true; whether one did.
+    fn scan_triangle(
+        &self,
+        region: Region,
+        corners: [Vec3; 3],
+        touching: [bool; 3],
+        margin: f64,
+        mut found: impl FnMut(usize, bool) -> bool,
+    ) -> bool {
         let r = self.region(region);
         let reach = Vec3::splat(margin);
         let [a, b, c] = corners;
@@ -182,7 +241,12 @@ impl World {
             let sides = [clear_above(0), clear_above(1), clear_above(2)];
             !(sides.iter().all(|s| s.0) || sides.iter().all(|s| s.1))
         };
-        !r.bvh.any_near(&query, in_the_way)
+        r.bvh.any_near(&query, |i| in_the_way(i) && found(i, r.planes[i].is_some()))
+    }
+
+    /// The plane a flat object lies in, as a point and the unit normal ([`Shape::supporting_plane`]).
+    pub fn supporting_plane(&self, region: Region, index: usize) -> Option<(Vec3, Vec3)> {
+        self.region(region).planes[index]
     }
 
     pub fn object(&self, region: Region, index: usize) -> &Object {

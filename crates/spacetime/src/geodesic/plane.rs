@@ -360,6 +360,22 @@ impl PlaneStep<'_> {
         }
     }
 
+    /// World position and velocity `dx/dθ` at fraction `θ ∈ [0, 1]` of the step: [`PlaneStep::knot`]
+    /// with the tangent's length, `span · h · |dx/dφ|`, for root finding along the step.
+    pub fn motion<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> ([f64; 3], [f64; 3]) {
+        match self {
+            PlaneStep::Curved { segment, phi0, attempt, span, frame } => {
+                let (u, du, axes) = Self::axes(segment, *phi0, attempt, frame, theta * span);
+                let rho = metric.world_radius(u);
+                let sweep = span * attempt.h();
+                (axes.at_radius(rho), axes.scaled(sweep * metric.world_radius_slope(u) * du, sweep * rho))
+            }
+            PlaneStep::Straight { from, direction, length, .. } => {
+                (Self::along(from, direction, *length, theta), scale3(direction, *length))
+            }
+        }
+    }
+
     /// The axis a curved step sweeps round (right-handed with its direction of travel); `None`
     /// for a straight piece.
     pub fn axis(&self) -> Option<[f64; 3]> {
@@ -410,7 +426,12 @@ impl PlaneAxes {
 
     /// The unit world vector with radial and azimuthal components in the ratio `dr : dphi`.
     pub(super) fn along(&self, dr: f64, dphi: f64) -> [f64; 3] {
-        normalize3(&std::array::from_fn(|i| self.sign * (dr * self.radial[i] + dphi * self.azimuthal[i])))
+        normalize3(&self.scaled(dr, dphi))
+    }
+
+    /// The world vector with radial and azimuthal components `dr` and `dphi`.
+    fn scaled(&self, dr: f64, dphi: f64) -> [f64; 3] {
+        std::array::from_fn(|i| self.sign * (dr * self.radial[i] + dphi * self.azimuthal[i]))
     }
 }
 
