@@ -52,8 +52,9 @@ const MAX_ITERATIONS: u32 = 60;
 /// The fraction `θ ∈ [a.0, b.0]` where a curve crosses the plane through `point` with unit
 /// normal `normal`, and the curve's point there, given its points `a.1` and `b.1` on opposite
 /// sides of the plane at the bracket's ends `a.0 < b.0` and its position and velocity
-/// `motion(θ) = (x, dx/dθ)`: to within `tolerance` of the plane, or where the bracket has closed
-/// to that length along the curve.
+/// `motion(θ) = (x, dx/dθ)`: to within `tolerance` along the curve, where Newton's next step is
+/// that short or the bracket has closed to that length. (A height within tolerance is not enough:
+/// a ray that runs along the plane, just off it, has small heights far from where it crosses.)
 ///
 /// Newton's method works on the height over the distance from the centre, `g = s/|x|`: a ray's
 /// distance `1/u` changes fast where `u` is small, its direction `x/|x|` and `u` do not, and
@@ -73,18 +74,18 @@ pub fn crossing(
     let mut theta = a.0 + (b.0 - a.0) * a.1 / (a.1 - b.1);
     for _ in 0..MAX_ITERATIONS {
         let (x, velocity) = motion(theta);
-        let (s, distance, speed) = (normal.dot(x - point), x.length(), velocity.length());
-        if s.abs() <= tolerance || (b.0 - a.0) * speed <= tolerance {
+        let (distance, speed) = (x.length(), velocity.length());
+        let g = normal.dot(x - point) / distance;
+        let slope = (normal.dot(velocity) - g * x.dot(velocity) / distance) / distance;
+        let newton = theta - g / slope;
+        if ((newton - theta) * speed).abs() <= tolerance || (b.0 - a.0) * speed <= tolerance {
             return (theta, x);
         }
-        let g = s / distance;
-        let slope = (normal.dot(velocity) - g * x.dot(velocity) / distance) / distance;
         if (g < 0.0) == (a.1 < 0.0) {
             a = (theta, g);
         } else {
             b = (theta, g);
         }
-        let newton = theta - g / slope;
         theta = if newton > a.0 && newton < b.0 { newton } else { 0.5 * (a.0 + b.0) };
     }
     (theta, motion(theta).0)
@@ -104,6 +105,21 @@ mod tests {
         assert_eq!(Meeting::of(0.0, -3.0, -2.0), Meeting::Maybe);
         assert_eq!(Meeting::of(1.0, 3.0, 0.0), Meeting::Never);
         assert_eq!(Meeting::of(-1.0, -3.0, 0.0), Meeting::Never);
+    }
+
+    #[test]
+    fn a_curve_running_just_off_the_plane_is_cut_where_it_crosses() {
+        // It crosses y = 0 at x = 0.1, then runs just below the plane, within 10⁻⁵, to the end of
+        // the bracket: y = −10⁻⁵ tanh((x − 0.1)/0.01), x ∈ [0, 1.2], a unit off the centre. Its
+        // heights are within the tolerance almost all along; only Newton's step tells where it
+        // crosses. (A ray met a room's wall like this, just below the ceiling's edge.)
+        let curve = |t: f64| {
+            let (x, th) = (1.2 * t, ((1.2 * t - 0.1) / 0.01).tanh());
+            (Vec3::new(x, -1e-5 * th, 1.0), Vec3::new(1.2, -1.2e-3 * (1.0 - th * th), 0.0))
+        };
+        let at = |t: f64| (t, curve(t).0);
+        let (theta, x) = crossing(curve, Vec3::ZERO, Vec3::Y, at(0.0), at(1.0), 1e-4);
+        assert!((x.x - 0.1).abs() < 1e-4, "{theta}: {x}");
     }
 
     #[test]

@@ -663,6 +663,81 @@ mod tests {
     use crate::test_scenes::{floor_lamp_board_ball, uniform};
     use spacetime::Schwarzschild;
 
+    /// No ray leaves a closed room: rays that leave a wall near one of its edges and graze the
+    /// wall beside it (0.05° to 5°), where a crossing lies just past an edge and the curve runs
+    /// along the next plane, within tolerance of it, all hit a wall.
+    #[test]
+    fn grazing_rays_do_not_leave_a_closed_room() {
+        let t = crate::transform::Transform::identity();
+        let wall = |corner: [f64; 3], u: [f64; 3], v: [f64; 3]| crate::world::Object {
+            shape: crate::shape::Shape::rectangle(
+                Vec3::from_array(corner),
+                Vec3::from_array(u),
+                Vec3::from_array(v),
+                &t,
+            )
+            .unwrap(),
+            material: 0,
+            emission: None,
+        };
+        // The black-hole room's walls, all facing in.
+        let walls = vec![
+            wall([-6.0, -4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 8.0, 0.0]),
+            wall([-6.0, -4.0, 8.0], [12.0, 0.0, 0.0], [0.0, 0.0, -16.0]),
+            wall([-6.0, 4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 0.0, 16.0]),
+            wall([-6.0, -4.0, 8.0], [0.0, 0.0, -16.0], [0.0, 8.0, 0.0]),
+            wall([6.0, -4.0, -8.0], [0.0, 0.0, 16.0], [0.0, 8.0, 0.0]),
+            wall([6.0, -4.0, 8.0], [-12.0, 0.0, 0.0], [0.0, 8.0, 0.0]),
+        ];
+        let black = || crate::sky::Sky::Constant(crate::color::Rgb::ZERO);
+        let diffuse = crate::material::Material::Diffuse {
+            reflectance: crate::texture::Texture::Constant(crate::color::Rgb::splat(0.5)),
+        };
+        let world = World::new(vec![diffuse], (walls, black()), (Vec::new(), black()));
+        let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
+        let propagator = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
+        let mut uniform = uniform(5);
+        let half = Vec3::new(6.0, 4.0, 8.0);
+        let mut hits = 0;
+        for k in 0..20_000 {
+            // A point of the back or front wall, within 0.2 of the left or right wall, leaving
+            // into the room and skimming that side wall.
+            let side = if uniform() < 0.5 { -1.0 } else { 1.0 };
+            let face = if uniform() < 0.5 { -1.0 } else { 1.0 };
+            let on_wall = Vec3::new(side * (6.0 - 0.2 * uniform()), 8.0 * uniform() - 4.0, face * 8.0);
+            let graze = (0.05 + 4.95 * uniform()).to_radians();
+            let climb = std::f64::consts::TAU * uniform();
+            let (sin, cos) = graze.sin_cos();
+            // Mostly along the side wall (y and z), a little towards it (x).
+            let along = Vec3::new(0.0, climb.sin(), -face * climb.cos().abs().max(0.05)).normalize();
+            let direction = (cos * along + sin * side * Vec3::X).normalize();
+            let origin = offset_origin(on_wall, Vec3::Z, -face * Vec3::Z);
+            match propagator.trace(&world, Region::Upper, origin, direction) {
+                RayEnd::Hit(a) => {
+                    assert!((a.hit.p.abs() - half).max_element() < 1e-6, "ray {k}: hit at {}", a.hit.p);
+                    hits += 1;
+                }
+                RayEnd::Captured => {}
+                end => panic!("ray {k} from {origin:?} along {direction:?}: {end:?}"),
+            }
+        }
+        assert!(hits > 19_000, "{hits} hits");
+        // A ray from the black-hole room's back wall that skims its left wall up to the ceiling,
+        // bending back to end a step 4·10⁻⁶ past the wall's plane and above the ceiling, once
+        // escaped (a crossing was taken where the ray ran within tolerance of the plane, far
+        // past where it crossed); and rays near it.
+        let origin = Vec3::new(-5.9457814556959825, 1.2914639215015402, -7.999999992);
+        let direction = Vec3::new(-0.022994719906528252, 0.915631263411206, 0.4013609750840494);
+        for k in 0..2000 {
+            let turn = if k == 0 { Vec3::ZERO } else { 1e-3 * (Vec3::new(uniform(), uniform(), uniform()) - 0.5) };
+            let direction = (direction + turn).normalize();
+            match propagator.trace(&world, Region::Upper, origin, direction) {
+                RayEnd::Hit(a) => assert!((a.hit.p.abs() - half).max_element() < 1e-6, "ray {k}: hit at {}", a.hit.p),
+                end => panic!("ray {k} along {direction:?}: {end:?}"),
+            }
+        }
+    }
+
     /// Clearing curved steps by their tangent triangles, and solving their crossings of flat
     /// objects on the curve, finds the hits that the tube test alone finds, on rays leaving the
     /// floor (whose origins lie on it) and rays from inside the room; and it places them where
