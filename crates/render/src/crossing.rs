@@ -77,16 +77,19 @@ pub fn crossing(
         let (distance, speed) = (x.length(), velocity.length());
         let g = normal.dot(x - point) / distance;
         let slope = (normal.dot(velocity) - g * x.dot(velocity) / distance) / distance;
-        let newton = theta - g / slope;
-        if ((newton - theta) * speed).abs() <= tolerance || (b.0 - a.0) * speed <= tolerance {
-            return (theta, x);
-        }
         if (g < 0.0) == (a.1 < 0.0) {
             a = (theta, g);
         } else {
             b = (theta, g);
         }
-        theta = if newton > a.0 && newton < b.0 { newton } else { 0.5 * (a.0 + b.0) };
+        // Newton's step counts only where it stays in the bracket: a ray leaving the plane, just
+        // off it, points back to where it left, not to where it comes back through.
+        let newton = theta - g / slope;
+        let inside = newton >= a.0 && newton <= b.0;
+        if (inside && ((newton - theta) * speed).abs() <= tolerance) || (b.0 - a.0) * speed <= tolerance {
+            return (theta, x);
+        }
+        theta = if inside { newton } else { 0.5 * (a.0 + b.0) };
     }
     (theta, motion(theta).0)
 }
@@ -120,6 +123,16 @@ mod tests {
         let at = |t: f64| (t, curve(t).0);
         let (theta, x) = crossing(curve, Vec3::ZERO, Vec3::Y, at(0.0), at(1.0), 1e-4);
         assert!((x.x - 0.1).abs() < 1e-4, "{theta}: {x}");
+    }
+
+    #[test]
+    fn a_curve_leaving_the_plane_is_cut_where_it_comes_back() {
+        // From 10⁻⁹ above y = 0 (a ray's offset start), up and back down through the plane at
+        // x ≈ 0.5: y = 10⁻⁹ + x(0.5 − x). Newton's step at the start points back to it.
+        let curve = |t: f64| (Vec3::new(t, 1e-9 + t * (0.5 - t), 1.0), Vec3::new(1.0, 0.5 - 2.0 * t, 0.0));
+        let at = |t: f64| (t, curve(t).0);
+        let (theta, _) = crossing(curve, Vec3::ZERO, Vec3::Y, at(0.0), at(1.0), 1e-6);
+        assert!((theta - 0.5).abs() < 1e-5, "{theta}");
     }
 
     #[test]

@@ -738,6 +738,67 @@ mod tests {
         }
     }
 
+    /// Rays that leave the face of a board turned away from the hole bend back through the
+    /// board's plane: they are found where they come back, not where they left (Newton's step
+    /// at a ray's offset start points back to it), as chords 64 times closer to the curve find
+    /// them.
+    #[test]
+    fn rays_bending_back_through_the_board_they_leave_hit_it_where_they_return() {
+        let t = crate::transform::Transform::identity();
+        let plate = |corner: [f64; 3], u: [f64; 3], v: [f64; 3]| crate::world::Object {
+            shape: crate::shape::Shape::rectangle(
+                Vec3::from_array(corner),
+                Vec3::from_array(u),
+                Vec3::from_array(v),
+                &t,
+            )
+            .unwrap(),
+            material: 0,
+            emission: None,
+        };
+        // A board 1 below the hole, facing down (away from it), and a floor further down.
+        let board = plate([-6.0, -1.0, -6.0], [12.0, 0.0, 0.0], [0.0, 0.0, 12.0]);
+        let floor = plate([-6.0, -8.0, 6.0], [12.0, 0.0, 0.0], [0.0, 0.0, -12.0]);
+        let black = || crate::sky::Sky::Constant(crate::color::Rgb::ZERO);
+        let diffuse = crate::material::Material::Diffuse {
+            reflectance: crate::texture::Texture::Constant(crate::color::Rgb::splat(0.5)),
+        };
+        let world = World::new(vec![diffuse], (vec![board, floor], black()), (Vec::new(), black()));
+        let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
+        let bounded = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
+        let fine = Propagator { bound_arcs: false, epsilon: bounded.epsilon / 64.0, ..bounded.clone() };
+        let mut uniform = uniform(17);
+        let mut back_on_board = 0;
+        for k in 0..500 {
+            let on_board = Vec3::new(3.0 * uniform() - 1.5, -1.0, 3.0 * uniform() - 1.5);
+            let (dip, heading) = ((0.5 + 9.5 * uniform()).to_radians(), std::f64::consts::TAU * uniform());
+            let direction = Vec3::new(dip.cos() * heading.cos(), -dip.sin(), dip.cos() * heading.sin());
+            let origin = offset_origin(on_board, Vec3::Y, -Vec3::Y);
+            match (
+                bounded.trace(&world, Region::Upper, origin, direction),
+                fine.trace(&world, Region::Upper, origin, direction),
+            ) {
+                (RayEnd::Hit(a), RayEnd::Hit(b)) => {
+                    assert_eq!(a.object, b.object, "ray {k} from {origin} along {direction}");
+                    // The fine chords' own error on a plane met at a slant: ε/64 over the sine.
+                    let (off, sine) = ((a.hit.p - b.hit.p).length(), a.direction.dot(a.ng_local).abs());
+                    let bound = bounded.epsilon() * (0.01 + 2.0 / (64.0 * sine));
+                    assert!(off < bound, "ray {k} from {origin} along {direction}: {off} (sine {sine})");
+                    back_on_board += usize::from(a.object == 0);
+                }
+                (a, b) => assert!(
+                    matches!(
+                        (a, b),
+                        (RayEnd::Escaped { .. }, RayEnd::Escaped { .. }) | (RayEnd::Captured, RayEnd::Captured)
+                    ),
+                    "ray {k} from {origin} along {direction}: {a:?} vs {b:?}"
+                ),
+            }
+        }
+        // Measured: 467 of the 500 come back to the board.
+        assert!(back_on_board > 400, "{back_on_board} rays came back to the board");
+    }
+
     /// Clearing curved steps by their tangent triangles, and solving their crossings of flat
     /// objects on the curve, finds the hits that the tube test alone finds, on rays leaving the
     /// floor (whose origins lie on it) and rays from inside the room; and it places them where
