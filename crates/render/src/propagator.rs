@@ -65,7 +65,7 @@ pub struct Arrival {
 
 /// Crossings of flat objects are solved to this fraction of ε, far below what a chord finds
 /// (about ε, more on a plane met at a slant): the hit's point, direction and energy are then the
-/// curve's. On the black-hole room a crossing takes 2.2 Newton iterations (2.8 at 10⁻⁴).
+/// curve's. On the black-hole room a crossing takes 2.3 points on the curve (at 10⁻⁴, 0.6 more).
 const CROSSING_TOLERANCE: f64 = 1e-2;
 
 /// How rays are propagated; built once per render.
