@@ -660,7 +660,7 @@ impl Propagator {
 mod tests {
     use super::*;
     use crate::shape::offset_origin;
-    use crate::test_scenes::{floor_lamp_board_ball, uniform};
+    use crate::test_scenes::{floor_lamp_board_ball, rectangles, uniform};
     use spacetime::Schwarzschild;
 
     /// No ray leaves a closed room: rays that leave a wall near one of its edges and graze the
@@ -668,32 +668,15 @@ mod tests {
     /// along the next plane, within tolerance of it, all hit a wall.
     #[test]
     fn grazing_rays_do_not_leave_a_closed_room() {
-        let t = crate::transform::Transform::identity();
-        let wall = |corner: [f64; 3], u: [f64; 3], v: [f64; 3]| crate::world::Object {
-            shape: crate::shape::Shape::rectangle(
-                Vec3::from_array(corner),
-                Vec3::from_array(u),
-                Vec3::from_array(v),
-                &t,
-            )
-            .unwrap(),
-            material: 0,
-            emission: None,
-        };
         // The black-hole room's walls, all facing in.
-        let walls = vec![
-            wall([-6.0, -4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 8.0, 0.0]),
-            wall([-6.0, -4.0, 8.0], [12.0, 0.0, 0.0], [0.0, 0.0, -16.0]),
-            wall([-6.0, 4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 0.0, 16.0]),
-            wall([-6.0, -4.0, 8.0], [0.0, 0.0, -16.0], [0.0, 8.0, 0.0]),
-            wall([6.0, -4.0, -8.0], [0.0, 0.0, 16.0], [0.0, 8.0, 0.0]),
-            wall([6.0, -4.0, 8.0], [-12.0, 0.0, 0.0], [0.0, 8.0, 0.0]),
-        ];
-        let black = || crate::sky::Sky::Constant(crate::color::Rgb::ZERO);
-        let diffuse = crate::material::Material::Diffuse {
-            reflectance: crate::texture::Texture::Constant(crate::color::Rgb::splat(0.5)),
-        };
-        let world = World::new(vec![diffuse], (walls, black()), (Vec::new(), black()));
+        let world = rectangles(&[
+            [[-6.0, -4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
+            [[-6.0, -4.0, 8.0], [12.0, 0.0, 0.0], [0.0, 0.0, -16.0]],
+            [[-6.0, 4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 0.0, 16.0]],
+            [[-6.0, -4.0, 8.0], [0.0, 0.0, -16.0], [0.0, 8.0, 0.0]],
+            [[6.0, -4.0, -8.0], [0.0, 0.0, 16.0], [0.0, 8.0, 0.0]],
+            [[6.0, -4.0, 8.0], [-12.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
+        ]);
         let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
         let propagator = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
         let mut uniform = uniform(5);
@@ -744,26 +727,11 @@ mod tests {
     /// them.
     #[test]
     fn rays_bending_back_through_the_board_they_leave_hit_it_where_they_return() {
-        let t = crate::transform::Transform::identity();
-        let plate = |corner: [f64; 3], u: [f64; 3], v: [f64; 3]| crate::world::Object {
-            shape: crate::shape::Shape::rectangle(
-                Vec3::from_array(corner),
-                Vec3::from_array(u),
-                Vec3::from_array(v),
-                &t,
-            )
-            .unwrap(),
-            material: 0,
-            emission: None,
-        };
         // A board 1 below the hole, facing down (away from it), and a floor further down.
-        let board = plate([-6.0, -1.0, -6.0], [12.0, 0.0, 0.0], [0.0, 0.0, 12.0]);
-        let floor = plate([-6.0, -8.0, 6.0], [12.0, 0.0, 0.0], [0.0, 0.0, -12.0]);
-        let black = || crate::sky::Sky::Constant(crate::color::Rgb::ZERO);
-        let diffuse = crate::material::Material::Diffuse {
-            reflectance: crate::texture::Texture::Constant(crate::color::Rgb::splat(0.5)),
-        };
-        let world = World::new(vec![diffuse], (vec![board, floor], black()), (Vec::new(), black()));
+        let world = rectangles(&[
+            [[-6.0, -1.0, -6.0], [12.0, 0.0, 0.0], [0.0, 0.0, 12.0]],
+            [[-6.0, -8.0, 6.0], [12.0, 0.0, 0.0], [0.0, 0.0, -12.0]],
+        ]);
         let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
         let bounded = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
         let fine = Propagator { bound_arcs: false, epsilon: bounded.epsilon / 64.0, ..bounded.clone() };

@@ -29,6 +29,22 @@ pub fn floor_lamp_board_ball() -> World {
     World::new(materials, (objects, black()), (Vec::new(), black()))
 }
 
+/// Diffuse rectangles `[corner, edge_u, edge_v]` (facing `edge_u × edge_v`) under a black sky.
+pub fn rectangles(shapes: &[[[f64; 3]; 3]]) -> World {
+    let t = Transform::identity();
+    let objects = shapes
+        .iter()
+        .map(|[corner, u, v]| Object {
+            shape: Shape::rectangle(Vec3::from_array(*corner), Vec3::from_array(*u), Vec3::from_array(*v), &t).unwrap(),
+            material: 0,
+            emission: None,
+        })
+        .collect();
+    let black = || Sky::Constant(Rgb::ZERO);
+    let materials = vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.5)) }];
+    World::new(materials, (objects, black()), (Vec::new(), black()))
+}
+
 /// A reproducible stream of uniform numbers in `[0, 1)` (a 64-bit LCG's high bits).
 pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
     let mut state = seed;
