@@ -451,6 +451,7 @@ impl Propagator {
         b: Knot,
         blockers: &FlatBlockers,
     ) -> Option<Option<ChordHit>> {
+        let tolerance = CROSSING_TOLERANCE * self.epsilon;
         let mut first: Option<ChordHit> = None;
         for object in blockers.iter() {
             let (point, normal) = world.supporting_plane(region, object)?;
@@ -465,7 +466,6 @@ impl Propagator {
             if first.is_some_and(|hit| (height(hit.chord.at(hit.t)) > 0.0) == (s_a > 0.0)) {
                 continue;
             }
-            let tolerance = CROSSING_TOLERANCE * self.epsilon;
             let (theta, x) = crossing(motion, point, normal, (a.theta, a.at), (b.theta, b.at), tolerance);
             if first.is_some_and(|hit| hit.theta <= theta) {
                 continue;

@@ -405,15 +405,11 @@ struct Bracket {
 }
 
 impl Bracket {
-    /// All rays the short way; the long way's start inward of its critical angle `ψ_c`, where
-    /// `cot(π − ψ_c) = −√(1 − sin²ψ_c)/sin ψ_c`.
+    /// All rays the short way; the long way's start inward of its critical angle `ψ_c`.
     fn of(way: Way, mass: f64, ux: f64) -> Self {
         let high = match way {
             Way::Short => f64::INFINITY,
-            Way::Long => {
-                let critical = critical_sin(mass, ux);
-                slope_scale(mass, ux) * (1.0 - critical * critical).sqrt() / critical
-            }
+            Way::Long => inward_slope(mass, ux, critical_sin(mass, ux)),
         };
         Self { low: f64::NEG_INFINITY, high }
     }
@@ -541,9 +537,14 @@ pub(super) fn start_parameter(way: Way, mass: f64, ux: f64, psi: f64) -> f64 {
 }
 
 /// The long way's start slope `s` at [`start_parameter`] `ln ε`: `sin ψ = sin ψ_c (1 + ε)` on the
-/// inward side (`ψ > π/2`), where `−cot ψ = √(1 − sin²ψ)/sin ψ`.
+/// inward side.
 fn long_start_slope(mass: f64, ux: f64, ln_epsilon: f64) -> f64 {
-    let sin = (critical_sin(mass, ux) * (1.0 + ln_epsilon.exp())).min(1.0);
+    inward_slope(mass, ux, (critical_sin(mass, ux) * (1.0 + ln_epsilon.exp())).min(1.0))
+}
+
+/// The start slope `s = −(u_x/σ_x) cot ψ` of a ray leaving `u_x` inward (`ψ > π/2`) with
+/// `sin ψ = sin`, where `−cot ψ = √(1 − sin²ψ)/sin ψ`.
+fn inward_slope(mass: f64, ux: f64, sin: f64) -> f64 {
     slope_scale(mass, ux) * (1.0 - sin * sin).sqrt() / sin
 }
 
