@@ -22,7 +22,7 @@ use crate::geometry::{Ray, Vec3};
 use crate::settings::Intersection;
 use crate::shape::SurfaceHit;
 use crate::world::{Blockers, FlatBlockers, World};
-use spacetime::geodesic::connect::{connect_facing, Connection, Way};
+use spacetime::geodesic::connect::{connect_along, Connection, Way, Waypoints};
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
 use spacetime::geodesic::tangent_triangle::tangent_triangle;
 use spacetime::geodesic::{HamiltonianStep, HamiltonianTracer, Integrator, State, TraceSettings};
@@ -193,11 +193,18 @@ impl Propagator {
     /// The light ray from world point `from` to world point `to` that goes `way` round the hole,
     /// with its bundle density; `None` where [`Propagator::connects`] is false or there is no
     /// such ray, or, given the world normal `facing` of a one-sided surface at `to`, where the
-    /// ray reaches it from behind.
-    pub fn connect(&self, from: Vec3, to: Vec3, way: Way, facing: Option<Vec3>) -> Option<Connection> {
+    /// ray reaches it from behind. `waypoints` receives points along the ray.
+    pub fn connect(
+        &self,
+        from: Vec3,
+        to: Vec3,
+        way: Way,
+        facing: Option<Vec3>,
+        waypoints: &mut Waypoints,
+    ) -> Option<Connection> {
         match self.spacetime {
             Spacetime::Schwarzschild(m) if self.connects() => {
-                connect_facing(&m, from.to_array(), to.to_array(), way, facing.map(|n| n.to_array()))
+                connect_along(&m, from.to_array(), to.to_array(), way, facing.map(|n| n.to_array()), waypoints)
             }
             _ => None,
         }

@@ -3,7 +3,7 @@
 
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
-use spacetime::geodesic::connect::{connect, connect_facing, Connection, Way};
+use spacetime::geodesic::connect::{connect, connect_along, Connection, Way, Waypoints};
 use spacetime::geodesic::plane::{trace_plane, PlaneStart, PlaneStep};
 use spacetime::tensor::{cross3, dot3, norm3, normalize3};
 use spacetime::{Integrator, Region, Schwarzschild, TraceSettings, Visit};
@@ -240,9 +240,10 @@ fn both_ways_round_lie_in_the_triangles_between_their_waypoints() {
     for way in Way::BOTH {
         let (mut tried, mut bounded, mut pieces) = (0, 0, 0);
         for &(hole, x, y) in &pairs {
-            let Some(c) = connect(&hole, x, y, way) else { continue };
+            let mut waypoints = Waypoints::default();
+            let Some(c) = connect_along(&hole, x, y, way, None, &mut waypoints) else { continue };
             tried += 1;
-            let Some(triangles) = c.enclosing_triangles(x, y).collect::<Option<Vec<_>>>() else { continue };
+            let Some(triangles) = c.enclosing_triangles(&waypoints, x, y).collect::<Option<Vec<_>>>() else { continue };
             bounded += 1;
             pieces += triangles.len();
             assert_eq!((triangles[0][0], triangles[triangles.len() - 1][2]), (x, y));
@@ -272,7 +273,7 @@ fn rays_reaching_a_one_sided_surface_from_behind_are_dropped() {
             let Some(full) = connect(&hole, x, y, way) else { continue };
             let from_behind = dot3(&normal, &full.end_tangent) > 0.0;
             behind += usize::from(from_behind);
-            match connect_facing(&hole, x, y, way, Some(normal)) {
+            match connect_along(&hole, x, y, way, Some(normal), &mut Waypoints::default()) {
                 Some(kept) => assert_eq!(kept, full, "{x:?} → {y:?} {way:?}"),
                 None => {
                     dropped += 1;
@@ -287,7 +288,7 @@ fn rays_reaching_a_one_sided_surface_from_behind_are_dropped() {
 
 /// The short way from a point behind a plane never reaches the plane from the front while the
 /// centre lies on its front side (the proof at `connect::short_way_arrives_behind`), so
-/// `connect_facing` drops those pairs before shooting. Every such ray found without the check
+/// `connect_along` drops those pairs before shooting. Every such ray found without the check
 /// arrives from behind, and the reversed ray leaves `y` into the back, in the room and on the
 /// strong-bending pairs; with the centre behind the plane too, rays from behind do reach it from
 /// the front, so the centre's side matters.
@@ -306,7 +307,7 @@ fn the_short_way_from_behind_a_plane_facing_the_centre_arrives_behind_it() {
             if dot3(&n, &y) <= 0.0 {
                 checked += 1;
                 assert!(arrival > -1e-9, "{x:?} → {y:?}, normal {n:?}: arrives from the front ({arrival})");
-                assert_eq!(connect_facing(&hole, x, y, Way::Short, Some(n)), None);
+                assert_eq!(connect_along(&hole, x, y, Way::Short, Some(n), &mut Waypoints::default()), None);
                 // Reversed, the ray leaves `y` into the back: an opaque surface there reflects none.
                 let back = connect(&hole, y, x, Way::Short).unwrap();
                 let leaving = dot3(&n, &back.start_tangent);

@@ -28,7 +28,7 @@
 //! ([`Connection::enclosing_triangle`]); where no object but the two it joins comes within ε of
 //! them, nothing can block it. Any other connection is traced against the scene like any ray,
 //! so occluders are seen exactly as BSDF-sampled rays see them. A light that emits from one
-//! side is joined only by rays that reach that side (`connect_facing` drops the others before
+//! side is joined only by rays that reach that side (`connect_along` drops the others before
 //! refining them).
 //!
 //! Kerr and the Ellis wormhole have no connection solver: they render with BSDF sampling alone.
@@ -39,7 +39,7 @@ use crate::color::Rgb;
 use crate::geometry::Vec3;
 use crate::propagator::{Arrival, Propagator, RayEnd};
 use crate::world::{Emission, World};
-use spacetime::geodesic::connect::{Connection, Way};
+use spacetime::geodesic::connect::{Connection, Way, Waypoints};
 
 /// A traced connection counts as reaching the sampled point when it hits the light within this
 /// many chord tolerances ε of it (the chord test places hits to within ~ε of the curve).
@@ -74,7 +74,7 @@ pub(super) struct LightPoint {
 }
 
 /// A sampled light point joined to the shading point, before the visibility test.
-pub(super) struct Candidate {
+pub(super) struct Candidate<'w> {
     /// Direction the ray leaves the shading point in (its static frame).
     pub wi: Vec3,
     /// Emitted radiance towards the shading point, as the static observer at the light sees it.
@@ -84,6 +84,8 @@ pub(super) struct Candidate {
     object: usize,
     point: Vec3,
     connection: Connection,
+    /// Points along the connection, in the caller's scratch.
+    waypoints: &'w Waypoints,
 }
 
 /// Samples a light in the region of `at` (`u_choice` picks the light, `u_point` the point).
@@ -102,11 +104,17 @@ impl LightPoint {
         self.point
     }
 
-    /// Joins the shading point of `at` to this point by the ray going `way` round the hole;
-    /// `None` if there is none or it carries nothing.
-    pub(super) fn join(&self, propagator: &Propagator, at: &Arrival, way: Way) -> Option<Candidate> {
+    /// Joins the shading point of `at` to this point by the ray going `way` round the hole,
+    /// keeping its waypoints in `waypoints`; `None` if there is none or it carries nothing.
+    pub(super) fn join<'w>(
+        &self,
+        propagator: &Propagator,
+        at: &Arrival,
+        way: Way,
+        waypoints: &'w mut Waypoints,
+    ) -> Option<Candidate<'w>> {
         let facing = (!self.emission.two_sided).then_some(self.normal);
-        let connection = propagator.connect(at.hit.p, self.point, way, facing)?;
+        let connection = propagator.connect(at.hit.p, self.point, way, facing, waypoints)?;
         let normal_local = propagator.local_normal(at.region, self.point, self.normal);
         let emitted = self.emission.radiance_towards(normal_local, -Vec3::from_array(connection.end));
         let pdf = way_probability(way) * solid_angle_density(self.density, self.normal, &connection);
@@ -114,11 +122,11 @@ impl LightPoint {
             return None;
         }
         let wi = Vec3::from_array(connection.start);
-        Some(Candidate { wi, emitted, pdf, object: self.object, point: self.point, connection })
+        Some(Candidate { wi, emitted, pdf, object: self.object, point: self.point, connection, waypoints })
     }
 }
 
-impl Candidate {
+impl Candidate<'_> {
     /// Whether the connection from the shading point of `at` (local geometric normal `ng_local`)
     /// reaches the sampled point unoccluded: the radiance factor `(E_x/E_y)⁴` if so, else
     /// `None`. A connection whose triangle no object comes near (within ε) is seen without
@@ -148,7 +156,7 @@ impl Candidate {
         if self.connection.enclosing_triangle(x, y).is_some_and(|triangle| clear(triangle, true, true)) {
             return true;
         }
-        let mut pieces = self.connection.enclosing_triangles(x, y).enumerate().peekable();
+        let mut pieces = self.connection.enclosing_triangles(self.waypoints, x, y).enumerate().peekable();
         while let Some((k, piece)) = pieces.next() {
             if !piece.is_some_and(|triangle| clear(triangle, k == 0, pieces.peek().is_none())) {
                 return false;
@@ -195,7 +203,7 @@ pub(super) fn emitter_pdf(world: &World, propagator: &Propagator, from: Vec3, ar
     if choice == 0.0 {
         return None;
     }
-    let connection = propagator.connect(from, arrival.hit.p, way, None)?;
+    let connection = propagator.connect(from, arrival.hit.p, way, None, &mut Waypoints::default())?;
     let area = world.object(arrival.region, arrival.object).shape.area();
     let pdf = way_probability(way) * solid_angle_density(choice / area, arrival.hit.ng, &connection);
     Some(pdf).filter(|p| *p > 0.0 && p.is_finite())
@@ -231,7 +239,8 @@ mod tests {
                     continue;
                 };
                 let point = sample_point(&world, &at, uniform(), [uniform(), uniform()]).unwrap();
-                let Some(candidate) = point.join(&propagator, &at, way) else { continue };
+                let mut waypoints = Waypoints::default();
+                let Some(candidate) = point.join(&propagator, &at, way, &mut waypoints) else { continue };
                 let mut stats = PathStats::default();
                 let traced = candidate.traced(&world, &propagator, &at, at.ng_local, &mut stats);
                 let clear = candidate.is_clear(&world, &propagator, &at);

@@ -20,7 +20,7 @@ use crate::propagator::{Arrival, Propagator, RayEnd};
 use crate::sampling::{power_heuristic, Sampler};
 use crate::shape::offset_origin;
 use crate::world::World;
-use spacetime::geodesic::connect::{short_way_arrives_behind, Way};
+use spacetime::geodesic::connect::{short_way_arrives_behind, Way, Waypoints};
 use spacetime::Region;
 
 /// Paths start surviving Russian roulette unconditionally for this many bounces.
@@ -184,14 +184,14 @@ impl<'a> PathIntegrator<'a> {
         let Some(point) = geodesic_light::sample_point(self.world, at, u_choice, u_point) else {
             return Rgb::ZERO;
         };
-        let mut sum = Rgb::ZERO;
+        let (mut sum, mut waypoints) = (Rgb::ZERO, Waypoints::default());
         for way in Way::BOTH {
             if u_way >= geodesic_light::way_probability(way)
                 || (way == Way::Short && reflects_none(at, shading, &point))
             {
                 continue;
             }
-            if let Some(light) = point.join(self.propagator, at, way) {
+            if let Some(light) = point.join(self.propagator, at, way, &mut waypoints) {
                 sum += self.connected_light(at, shading, &light, stats);
             }
         }

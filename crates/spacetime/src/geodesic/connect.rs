@@ -94,7 +94,7 @@ const UTOL: f64 = 1e-6;
 /// and `x`): no connection is returned.
 const MIN_SIN_SWEEP: f64 = 1e-9;
 const MAX_ITERATIONS: u32 = 100;
-/// A ray is dropped by [`connect_facing`] when it meets the surface from behind by more than
+/// A ray is dropped by [`connect_along`] when it meets the surface from behind by more than
 /// this cosine: ten times the error of the direction it is judged by.
 const FACING_MARGIN: f64 = 1e-2;
 const MAX_STEPS: u32 = 10_000;
@@ -141,35 +141,37 @@ pub struct Connection {
     pub solid_angle_per_area: f64,
     /// Azimuth swept from `x` to `y`: `Δφ ∈ (0, π]` the short way, `2π − Δφ` the long way.
     pub swept: f64,
-    /// Points along the ray between its ends.
-    pub waypoints: Waypoints,
+    /// Unit normal of the ray's plane, the axis it sweeps round.
+    pub axis: [f64; 3],
 }
 
 /// Most points kept along a ray between its ends; a ray that needs more keeps none.
 const MAX_WAYPOINTS: usize = 24;
 
-/// Points along a connecting ray, in its plane (basis `x̂`, `e₂`): `(φ, u, u')` where the shots'
-/// Taylor steps ended, less than a radian of azimuth apart.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Points along a connecting ray, in its plane (basis `x̂`, `e₂`), where the last shot's Taylor
+/// steps ended, less than a radian of azimuth apart: the solver's scratch, kept by the caller
+/// beside the [`Connection`] it last filled them for ([`connect_along`]), so that a connection
+/// does not carry (and copy) them where its single triangle settles its visibility.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Waypoints {
     xh: [f64; 3],
     e2: [f64; 3],
-    /// Points kept, or `MAX_WAYPOINTS + 1` where there were too many to keep.
+    /// Newton's last step in the start slope `s`, taken without shooting again: the kept points
+    /// follow it to first order (`∂u/∂s = J`, `∂u'/∂s = J'`).
+    step: f64,
+    /// States kept, or `MAX_WAYPOINTS + 1` where there were too many to keep.
     count: usize,
-    points: [[f64; 3]; MAX_WAYPOINTS],
-}
-
-/// A shot's states `(φ, u, u', J, J')` at the ends of its steps, before the last.
-struct Track {
-    count: usize,
+    /// The shot's `(φ, u, u', J, J')` at the ends of its steps, before the last.
     states: [[f64; 5]; MAX_WAYPOINTS],
 }
 
-impl Track {
-    fn new() -> Self {
-        Self { count: 0, states: [[0.0; 5]; MAX_WAYPOINTS] }
+impl Default for Waypoints {
+    fn default() -> Self {
+        Self { xh: [0.0; 3], e2: [0.0; 3], step: 0.0, count: 0, states: [[0.0; 5]; MAX_WAYPOINTS] }
     }
+}
 
+impl Waypoints {
     fn push(&mut self, phi: f64, y: &[f64; 6]) {
         if let Some(state) = self.states.get_mut(self.count) {
             *state = [phi, y[0], y[1], y[2], y[3]];
@@ -177,14 +179,12 @@ impl Track {
         self.count = (self.count + 1).min(MAX_WAYPOINTS + 1);
     }
 
-    /// The points of the ray a Newton step `step` in `s` away from the one shot, to first order
-    /// (`∂u/∂s = J`, `∂u'/∂s = J'`), in the plane `xh`, `e2`.
-    fn waypoints(&self, step: f64, xh: [f64; 3], e2: [f64; 3]) -> Waypoints {
-        let mut points = [[0.0; 3]; MAX_WAYPOINTS];
-        for (point, [phi, u, du, j, dj]) in points.iter_mut().zip(&self.states[..self.count.min(MAX_WAYPOINTS)]) {
-            *point = [*phi, u + j * step, du + dj * step];
-        }
-        Waypoints { xh, e2, count: self.count, points }
+    /// The kept points `(φ, u, u')` of the ray Newton's last step led to.
+    fn points(&self) -> impl Iterator<Item = [f64; 3]> + '_ {
+        let step = self.step;
+        self.states[..self.count.min(MAX_WAYPOINTS)]
+            .iter()
+            .map(move |[phi, u, du, j, dj]| [*phi, u + j * step, du + dj * step])
     }
 }
 
@@ -197,7 +197,7 @@ impl Connection {
         if self.swept > PI {
             return None;
         }
-        tangent_triangle(self.waypoints.axis(), (x, self.start_tangent), (y, self.end_tangent))
+        tangent_triangle(self.axis, (x, self.start_tangent), (y, self.end_tangent))
     }
 
     /// Triangles that together hold the ray from `x` to `y`, each the tangent triangle of a piece
@@ -208,10 +208,15 @@ impl Connection {
     /// `MERGED_TURN_COS`): fewer, still small triangles (it has a dozen waypoints). The short way
     /// is asked for its pieces only where its one triangle came near something, and there
     /// merged triangles would mostly come near it again.
-    pub fn enclosing_triangles(&self, x: [f64; 3], y: [f64; 3]) -> impl Iterator<Item = Option<[[f64; 3]; 3]>> + '_ {
-        let (w, axis) = (&self.waypoints, self.waypoints.axis());
+    pub fn enclosing_triangles<'a>(
+        &'a self,
+        waypoints: &'a Waypoints,
+        x: [f64; 3],
+        y: [f64; 3],
+    ) -> impl Iterator<Item = Option<[[f64; 3]; 3]>> + 'a {
+        let (w, axis) = (waypoints, self.axis);
         let kept = w.count <= MAX_WAYPOINTS;
-        let inner = w.points[..w.count.min(MAX_WAYPOINTS)].iter().map(|p| (p[0], w.world(p)));
+        let inner = w.points().map(|p| (p[0], w.world(&p)));
         let mut knots = std::iter::once((0.0, (x, self.start_tangent)))
             .chain(inner)
             .chain(std::iter::once((self.swept, (y, self.end_tangent))))
@@ -244,11 +249,6 @@ const MERGED_SWEEP: f64 = 2.0;
 const MERGED_TURN_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
 impl Waypoints {
-    /// The axis the ray sweeps round (its plane's normal).
-    fn axis(&self) -> [f64; 3] {
-        cross3(&self.xh, &self.e2)
-    }
-
     /// World position and unit world tangent of the point `(φ, u, u')`: world coordinates see
     /// the ray's direction as `(−u', u)` in the radial and azimuthal directions.
     fn world(&self, &[phi, u, du]: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
@@ -277,24 +277,26 @@ enum Shot {
 /// (both outside the horizon), or `None` where there is none (it would be captured, `y` lies on
 /// the line through the centre and `x`, or, the long way, `x` lies inside the photon sphere).
 pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) -> Option<Connection> {
-    connect_facing(metric, x, y, way, None)
+    connect_along(metric, x, y, way, None, &mut Waypoints::default())
 }
 
-/// [`connect`] to a point `y` on a surface that only the rays reaching it from the side of its
-/// world normal `facing` matter for (a one-sided emitter): a ray found arriving from the other
-/// side is dropped as soon as a shot gives its direction to about 10⁻³, before any shot that
-/// would refine it (rays within 10⁻² in the cosine of grazing the surface are kept and refined).
-pub fn connect_facing(
+/// [`connect`], filling `waypoints` with points along the ray (overwritten by each call), and
+/// to a point `y` on a surface that only the rays reaching it from the side of its world normal
+/// `facing` matter for (a one-sided emitter): a ray found arriving from the other side is
+/// dropped as soon as a shot gives its direction to about 10⁻³, before any shot that would refine
+/// it (rays within 10⁻² in the cosine of grazing the surface are kept and refined).
+pub fn connect_along(
     metric: &Schwarzschild,
     x: [f64; 3],
     y: [f64; 3],
     way: Way,
     facing: Option<[f64; 3]>,
+    waypoints: &mut Waypoints,
 ) -> Option<Connection> {
-    solve(metric, x, y, way, facing, true)
+    solve(metric, x, y, way, facing, true, waypoints)
 }
 
-/// [`connect_facing`], starting from the tabulated [`start_parameter`] where `tabulated` and the
+/// [`connect_along`], starting from the tabulated [`start_parameter`] where `tabulated` and the
 /// way's table covers the ends, else from [`guessed_parameter`].
 pub(super) fn solve(
     metric: &Schwarzschild,
@@ -303,6 +305,7 @@ pub(super) fn solve(
     way: Way,
     facing: Option<[f64; 3]>,
     tabulated: bool,
+    waypoints: &mut Waypoints,
 ) -> Option<Connection> {
     let (rx, ry) = (norm3(&x), norm3(&y));
     let horizon = 2.0 * metric.mass;
@@ -347,10 +350,9 @@ pub(super) fn solve(
         }
     };
     let mut bracket = Bracket::of(way, m, ux);
-    let mut track = Track::new();
     for _ in 0..MAX_ITERATIONS {
         let rtol = if fine { final_rtol(way) } else { RTOL_COARSE };
-        match shoot(metric, ux, s, sweep, rtol, &mut track)? {
+        match shoot(metric, ux, s, sweep, rtol, waypoints)? {
             Shot::Escapes => bracket.low = s,
             Shot::Captured => bracket.high = s,
             Shot::Reaches(end) => {
@@ -369,10 +371,10 @@ pub(super) fn solve(
                     // The step taken unconfirmed: slope and Jacobi field at `y` follow it to first
                     // order, equation (4).
                     let (du, jacobi) = (end[1] + end[3] * step, end[2] + end[4] * step);
-                    let waypoints = track.waypoints(step, xh, e2);
+                    (waypoints.xh, waypoints.e2, waypoints.step) = (xh, e2, step);
                     let start = StartDirection::of_slope(s + step, slope_scale);
                     let (sin_sweep, _) = sweep_sin_cos;
-                    let ends = Ends { xh, e2, at_y, sin_sweep, sweep, start, ux, uy, du, jacobi, waypoints };
+                    let ends = Ends { xh, e2, at_y, sin_sweep, sweep, start, ux, uy, du, jacobi };
                     return ends.connection(metric);
                 }
                 // A shot's sign is trusted only well above its own integration error.
@@ -469,7 +471,6 @@ struct Ends {
     uy: f64,
     du: f64,
     jacobi: f64,
-    waypoints: Waypoints,
 }
 
 impl Ends {
@@ -490,8 +491,8 @@ impl Ends {
         // Equation (3).
         let density =
             s_psi.powi(3) * stretch(self.ux) * self.uy.powi(3) / (self.ux * self.jacobi * self.sin_sweep.abs() * t_phi);
-        let (solid_angle_per_area, swept, waypoints) = (density, self.sweep, self.waypoints);
-        Some(Connection { start, start_tangent, end, end_tangent, solid_angle_per_area, swept, waypoints })
+        let (solid_angle_per_area, swept, axis) = (density, self.sweep, cross3(&self.xh, &self.e2));
+        Some(Connection { start, start_tangent, end, end_tangent, solid_angle_per_area, swept, axis })
     }
 }
 
@@ -576,7 +577,7 @@ pub(super) fn guessed_parameter(way: Way, mass: f64, ux: f64, uy: f64, cos: f64,
 /// Integrates (1), (2) and (4) from `φ = 0` to `sweep` by Taylor series at relative tolerance
 /// `rtol` per step (see [`binet_taylor`]); `None` if it does not finish in `MAX_STEPS`. `K`
 /// only sizes Newton's neglected term, so it is left out of the step control.
-fn shoot(metric: &Schwarzschild, ux: f64, s: f64, sweep: f64, rtol: f64, track: &mut Track) -> Option<Shot> {
+fn shoot(metric: &Schwarzschild, ux: f64, s: f64, sweep: f64, rtol: f64, track: &mut Waypoints) -> Option<Shot> {
     let capture = 1.0 / (2.0 * metric.mass);
     // Absolute floors keep the step rule finite where a component passes through zero.
     let floor = [1e-3 * ux, 1e-3];

@@ -11,7 +11,7 @@
 //! way and 0.2 s the long way), the correction leaves a miss that the first, fine, shot takes
 //! out.
 
-use super::connect::{guessed_parameter, solve, start_parameter, Way};
+use super::connect::{guessed_parameter, solve, start_parameter, Way, Waypoints};
 use crate::metric::Schwarzschild;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
@@ -60,6 +60,7 @@ impl StartTable {
     fn build(way: Way) -> Self {
         let unit = Schwarzschild::new(1.0);
         let (low, high) = sweeps(way);
+        let mut waypoints = Waypoints::default();
         let mut values = vec![f64::NAN; (CELLS_MU + 1) * (CELLS_MU + 1) * (CELLS_SWEEP + 1)];
         for i in 0..=CELLS_MU {
             for j in 0..=CELLS_MU {
@@ -69,7 +70,7 @@ impl StartTable {
                     // `y` lies the short way round from `x`, at `Δφ = min(sweep, 2π − sweep)`.
                     let (sin, cos) = sweep.sin_cos();
                     let (x, y) = ([1.0 / ux, 0.0, 0.0], [cos / uy, sin.abs() / uy, 0.0]);
-                    let Some(ray) = solve(&unit, x, y, way, None, false) else { continue };
+                    let Some(ray) = solve(&unit, x, y, way, None, false, &mut waypoints) else { continue };
                     // The ray leaves at ψ ∈ (0, π) from the outward radial x̂, in the plane of ŷ.
                     let psi = ray.start[1].abs().atan2(ray.start[0]);
                     let guess = guessed_parameter(way, 1.0, ux, uy, cos, sin.abs(), sweep);
@@ -123,7 +124,7 @@ mod tests {
                 let sweep = low + 0.02 + (high - low - 0.04) * f(2);
                 let (sin, cos) = sweep.sin_cos();
                 let (x, y) = ([rx, 0.0, 0.0], [ry * cos, ry * sin.abs(), 0.0]);
-                let Some(ray) = solve(&hole, x, y, way, None, false) else { continue };
+                let Some(ray) = solve(&hole, x, y, way, None, false, &mut Waypoints::default()) else { continue };
                 let (ux, uy) = (1.0 / rx, 1.0 / ry);
                 let exact = start_parameter(way, mass, ux, ray.start[1].abs().atan2(ray.start[0]));
                 let guess = guessed_parameter(way, mass, ux, uy, cos, sin.abs(), sweep);
