@@ -63,6 +63,11 @@ impl Aabb {
         self.min.x > self.max.x || self.min.y > self.max.y || self.min.z > self.max.z
     }
 
+    /// Distance from the point `p` to the box (0 inside it).
+    pub fn distance_to(&self, p: Vec3) -> f64 {
+        (self.min - p).max(p - self.max).max(Vec3::ZERO).length()
+    }
+
     pub fn surface_area(&self) -> f64 {
         if self.is_empty() {
             return 0.0;

@@ -62,12 +62,14 @@ struct RegionScene {
     /// The total of those powers (world areas), for choosing between regions.
     light_power: f64,
     sky: Sky,
+    /// Radius of the ball about the world origin that no object reaches into.
+    empty_radius: f64,
 }
 
 impl RegionScene {
     fn new(objects: Vec<Object>, sky: Sky) -> Self {
         let bounds: Vec<Aabb> = objects.iter().map(|o| o.shape.bounds()).collect();
-        let planes = objects.iter().map(|o| o.shape.supporting_plane()).collect();
+        let planes: Vec<Option<(Vec3, Vec3)>> = objects.iter().map(|o| o.shape.supporting_plane()).collect();
         let bvh = Bvh::build(&bounds);
         let mut lights = Vec::new();
         let mut light_cdf = Vec::new();
@@ -86,7 +88,16 @@ impl RegionScene {
         for c in &mut light_cdf {
             *c /= total;
         }
-        Self { objects, bounds, planes, bvh, lights, light_cdf, light_power: total, sky }
+        let empty_radius = bounds
+            .iter()
+            .zip(&planes)
+            .map(|(b, plane)| {
+                // Both are lower bounds of the object's distance: its box's, its plane's.
+                let to_plane = plane.map_or(0.0, |(point, normal)| point.dot(normal).abs());
+                b.distance_to(Vec3::ZERO).max(to_plane)
+            })
+            .fold(f64::INFINITY, f64::min);
+        Self { objects, bounds, planes, bvh, lights, light_cdf, light_power: total, sky, empty_radius }
     }
 }
 
@@ -242,6 +253,12 @@ impl World {
             !(sides.iter().all(|s| s.0) || sides.iter().all(|s| s.1))
         };
         r.bvh.any_near(&query, |i| in_the_way(i) && found(i, r.planes[i].is_some()))
+    }
+
+    /// Radius of the ball about the world origin (where a spacetime's centre is) that no object
+    /// of `region` reaches into: infinite without objects.
+    pub fn empty_radius(&self, region: Region) -> f64 {
+        self.region(region).empty_radius
     }
 
     /// The plane a flat object lies in, as a point and the unit normal ([`Shape::supporting_plane`]).

@@ -150,8 +150,11 @@ impl Candidate<'_> {
     fn is_clear(&self, world: &World, propagator: &Propagator, at: &Arrival) -> bool {
         let (x, y) = (at.hit.p.to_array(), self.point.to_array());
         let clear = |triangle: [[f64; 3]; 3], first: bool, last: bool| {
-            let touching = [first, false, last];
-            world.triangle_is_clear(at.region, triangle.map(Vec3::from_array), touching, propagator.epsilon())
+            let [a, z, b] = triangle.map(Vec3::from_array);
+            if propagator.in_empty_ball(world, at.region, a, b) {
+                return true;
+            }
+            world.triangle_is_clear(at.region, [a, z, b], [first, false, last], propagator.epsilon())
         };
         if self.connection.enclosing_triangle(x, y).is_some_and(|triangle| clear(triangle, true, true)) {
             return true;
