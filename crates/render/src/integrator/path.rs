@@ -186,7 +186,7 @@ impl<'a> PathIntegrator<'a> {
         };
         let (mut sum, mut waypoints) = (Rgb::ZERO, Waypoints::default());
         for way in Way::BOTH {
-            if u_way >= geodesic_light::way_probability(way)
+            if u_way >= geodesic_light::way_probability(way, at.hit.p, point.position())
                 || (way == Way::Short && reflects_none(at, shading, &point))
             {
                 continue;
