@@ -2,18 +2,24 @@
 //! room with its black hole (the measurement behind BENCHMARKS.md; not a test, since it times).
 //!
 //! 1. A long brute-force render in two independent halves is the reference.
-//! 2. Each integrator's time per sample is measured on a short pilot render.
+//! 2. Each integrator's time per sample is measured on a short pilot render, after a one-sample
+//!    render that builds what is built once per process (the connection solver's start tables,
+//!    ~0.1 s), which no render of a real size notices and a tiny one would be dominated by.
 //! 3. Brute force renders `budget` samples per pixel; the path integrator renders as many as fit
 //!    in the same time. Both use seeds other than the reference's.
 //! 4. The RMSE of each against the reference (over pixels and channels) is printed, less the
 //!    reference's own noise: its per-pixel variance is `E[(A − B)²]/4` for halves `A`, `B`, and
-//!    it inflates every squared error by that much.
+//!    it inflates every squared error by that much. The ratio of the RMSEs is printed as
+//!    measured and scaled to exactly equal times (RMSE ∝ 1/√time), since the pilot's estimate
+//!    of the path integrator's samples is rounded and CPU times vary from run to run.
 //!
 //! Times are CPU times of the process (all threads, from `/proc/self/stat`; wall-clock time where
 //! that is not available), so other work on the machine does not skew the comparison.
 //!
 //! `cargo run --release --example equal_time -- [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP]`
-//! (default 48 36 4096 64; each reference half renders half of REFERENCE_SPP).
+//! (default 240 180 1024 64, about two minutes on two cores; each reference half renders half of
+//! REFERENCE_SPP). The ratio depends on the image size: the smaller it is, the more texture
+//! edges fall inside each pixel, noise both integrators share at equal samples (BENCHMARKS.md).
 
 use render::film::Film;
 use render::scene::Scene;
@@ -28,7 +34,7 @@ fn main() -> Result<(), String> {
         .map(|a| a.parse::<u32>().map_err(|e| format!("{a}: {e}")))
         .collect::<Result<_, _>>()?;
     let [width, height, reference_spp, budget] = match args.as_slice() {
-        [] => [48, 36, 4096, 64],
+        [] => [240, 180, 1024, 64],
         &[w, h, r, b] if w > 0 && h > 0 && r > 0 && b > 0 => [w, h, r, b],
         _ => return Err("usage: equal_time [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP], all positive".into()),
     };
@@ -50,6 +56,7 @@ fn main() -> Result<(), String> {
         reference.noise.sqrt()
     );
 
+    run(&scene, IntegratorKind::Path, 1, 1);
     let pilot_spp = (budget / 4).max(1);
     let (_, t_brute) = run(&scene, IntegratorKind::BruteForce, pilot_spp, 2000);
     let (_, t_path) = run(&scene, IntegratorKind::Path, pilot_spp, 2000);
@@ -57,7 +64,7 @@ fn main() -> Result<(), String> {
     println!("pilot at {pilot_spp} spp: brute force {t_brute:.2} s, path {t_path:.2} s (÷ {:.2})", t_path / t_brute);
 
     println!("{:<12} {:>5} {:>9} {:>10} {:>10}", "integrator", "spp", "CPU s", "mean", "RMSE");
-    let mut rmse = Vec::new();
+    let (mut rmse, mut seconds_used) = (Vec::new(), Vec::new());
     for (name, kind, spp) in
         [("brute force", IntegratorKind::BruteForce, budget), ("path", IntegratorKind::Path, path_spp)]
     {
@@ -65,8 +72,11 @@ fn main() -> Result<(), String> {
         let e = reference.rmse(&film);
         println!("{name:<12} {spp:>5} {seconds:>9.2} {:>10.5} {e:>10.5}", mean(&film));
         rmse.push(e);
+        seconds_used.push(seconds);
     }
-    println!("RMSE ratio brute force ÷ path at equal time: {:.2}", rmse[0] / rmse[1]);
+    let ratio = rmse[0] / rmse[1];
+    let scaled = ratio * (seconds_used[0] / seconds_used[1]).sqrt();
+    println!("RMSE ratio brute force ÷ path at equal time: {ratio:.2} (scaled to equal CPU time: {scaled:.2})");
     Ok(())
 }
 
