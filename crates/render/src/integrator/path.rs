@@ -109,7 +109,8 @@ impl<'a> PathIntegrator<'a> {
             }
             depth += 1;
             let bsdf = self.world.materials[object.material].bsdf(hit.uv, hit.p);
-            let ns = self.propagator.local_normal(arrival.region, hit.p, hit.ns);
+            // Flat shapes shade with their geometric normal, already taken to the local frame.
+            let ns = if hit.ns == hit.ng { ng } else { self.propagator.local_normal(arrival.region, hit.p, hit.ns) };
             let frame = Frame::from_normal(ns);
             let wo = frame.to_local(-arrival.direction);
             if !bsdf.is_delta() {
