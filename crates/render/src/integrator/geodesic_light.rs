@@ -239,23 +239,37 @@ mod tests {
     use crate::test_scenes::{floor_lamp_board_ball, uniform};
     use spacetime::{Region, Schwarzschild, Spacetime};
 
+    /// The chord tracer round the test scene's hole (mass 0.3).
+    fn propagator() -> Propagator {
+        Propagator::new(Spacetime::Schwarzschild(Schwarzschild::new(0.3)), 11.0, 1e-7, Intersection::Chord)
+    }
+
+    /// A point of the floor, the board or the ball, seen from above the floor, and a point
+    /// sampled on the lamp for it; `None` where the eye's ray missed them.
+    fn shading_point(
+        world: &World,
+        propagator: &Propagator,
+        uniform: &mut impl FnMut() -> f64,
+    ) -> Option<(Arrival, LightPoint)> {
+        let eye = Vec3::new(0.5, 3.0, 7.0);
+        let target = Vec3::new(12.0 * uniform() - 6.0, -4.0, 16.0 * uniform() - 8.0);
+        let RayEnd::Hit(at) = propagator.trace(world, Region::Upper, eye, (target - eye).normalize()) else {
+            return None;
+        };
+        let point = sample_point(world, &at, uniform(), [uniform(), uniform()])?;
+        Some((at, point))
+    }
+
     /// The triangle tests never clear a connection that tracing finds blocked, and they clear a
     /// good part of the others, either way round, with the same frequency shift.
     #[test]
     fn connections_cleared_by_their_triangles_are_seen_by_tracing() {
-        let world = floor_lamp_board_ball();
-        let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
-        let propagator = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
+        let (world, propagator) = (floor_lamp_board_ball(), propagator());
         let mut uniform = uniform(7);
-        let eye = Vec3::new(0.5, 3.0, 7.0);
         for way in Way::BOTH {
             let (mut cleared, mut seen, mut blocked) = (0, 0, 0);
             for _ in 0..400 {
-                let target = Vec3::new(12.0 * uniform() - 6.0, -4.0, 16.0 * uniform() - 8.0);
-                let RayEnd::Hit(at) = propagator.trace(&world, Region::Upper, eye, (target - eye).normalize()) else {
-                    continue;
-                };
-                let point = sample_point(&world, &at, uniform(), [uniform(), uniform()]).unwrap();
+                let Some((at, point)) = shading_point(&world, &propagator, &mut uniform) else { continue };
                 let mut waypoints = Waypoints::default();
                 let Some(candidate) = point.join(&propagator, &at, way, &mut waypoints) else { continue };
                 let mut stats = PathStats::default();
@@ -291,19 +305,12 @@ mod tests {
     /// probability included, a function of the two ends alone).
     #[test]
     fn joined_light_points_have_the_density_mis_gives_the_rays_reaching_them() {
-        let world = floor_lamp_board_ball();
-        let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
-        let propagator = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
+        let (world, propagator) = (floor_lamp_board_ball(), propagator());
         let mut uniform = uniform(3);
-        let eye = Vec3::new(0.5, 3.0, 7.0);
         for way in Way::BOTH {
             let mut compared = 0;
             for _ in 0..300 {
-                let target = Vec3::new(12.0 * uniform() - 6.0, -4.0, 16.0 * uniform() - 8.0);
-                let RayEnd::Hit(at) = propagator.trace(&world, Region::Upper, eye, (target - eye).normalize()) else {
-                    continue;
-                };
-                let point = sample_point(&world, &at, uniform(), [uniform(), uniform()]).unwrap();
+                let Some((at, point)) = shading_point(&world, &propagator, &mut uniform) else { continue };
                 let mut waypoints = Waypoints::default();
                 let Some(candidate) = point.join(&propagator, &at, way, &mut waypoints) else { continue };
                 let origin = leave(at.hit.p, at.hit.ng, at.ng_local, candidate.wi);
