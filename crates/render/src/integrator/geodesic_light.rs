@@ -117,20 +117,20 @@ impl LightPoint {
     }
 
     /// Joins the shading point of `at` to this point by the ray going `way` round the hole,
-    /// keeping its waypoints in `waypoints`; `None` if there is none or it carries nothing.
+    /// which was tried with probability `probability` ([`way_probability`]), keeping its
+    /// waypoints in `waypoints`; `None` if there is none or it carries nothing.
     pub(super) fn join<'w>(
         &self,
         propagator: &Propagator,
         at: &Arrival,
-        way: Way,
+        (way, probability): (Way, f64),
         waypoints: &'w mut Waypoints,
     ) -> Option<Candidate<'w>> {
         let facing = (!self.emission.two_sided).then_some(self.normal);
         let connection = propagator.connect(at.hit.p, self.point, way, facing, waypoints)?;
         let normal_local = propagator.local_normal(at.region, self.point, self.normal);
         let emitted = self.emission.radiance_towards(normal_local, -Vec3::from_array(connection.end));
-        let pdf =
-            way_probability(way, at.hit.p, self.point) * solid_angle_density(self.density, self.normal, &connection);
+        let pdf = probability * solid_angle_density(self.density, self.normal, &connection);
         if emitted == Rgb::ZERO || !(pdf > 0.0 && pdf.is_finite()) {
             return None;
         }
@@ -271,7 +271,14 @@ mod tests {
             for _ in 0..400 {
                 let Some((at, point)) = shading_point(&world, &propagator, &mut uniform) else { continue };
                 let mut waypoints = Waypoints::default();
-                let Some(candidate) = point.join(&propagator, &at, way, &mut waypoints) else { continue };
+                let Some(candidate) = point.join(
+                    &propagator,
+                    &at,
+                    (way, way_probability(way, at.hit.p, point.position())),
+                    &mut waypoints,
+                ) else {
+                    continue;
+                };
                 let mut stats = PathStats::default();
                 let traced = candidate.traced(&world, &propagator, &at, at.ng_local, &mut stats);
                 let clear = candidate.is_clear(&world, &propagator, &at);
@@ -312,7 +319,14 @@ mod tests {
             for _ in 0..300 {
                 let Some((at, point)) = shading_point(&world, &propagator, &mut uniform) else { continue };
                 let mut waypoints = Waypoints::default();
-                let Some(candidate) = point.join(&propagator, &at, way, &mut waypoints) else { continue };
+                let Some(candidate) = point.join(
+                    &propagator,
+                    &at,
+                    (way, way_probability(way, at.hit.p, point.position())),
+                    &mut waypoints,
+                ) else {
+                    continue;
+                };
                 let origin = leave(at.hit.p, at.hit.ng, at.ng_local, candidate.wi);
                 let RayEnd::Hit(arrival) = propagator.trace(&world, Region::Upper, origin, candidate.wi) else {
                     continue;

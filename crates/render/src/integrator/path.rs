@@ -187,12 +187,11 @@ impl<'a> PathIntegrator<'a> {
         };
         let (mut sum, mut waypoints) = (Rgb::ZERO, Waypoints::default());
         for way in Way::BOTH {
-            if u_way >= geodesic_light::way_probability(way, at.hit.p, point.position())
-                || (way == Way::Short && reflects_none(at, shading, &point))
-            {
+            let probability = geodesic_light::way_probability(way, at.hit.p, point.position());
+            if u_way >= probability || (way == Way::Short && reflects_none(at, shading, &point)) {
                 continue;
             }
-            if let Some(light) = point.join(self.propagator, at, way, &mut waypoints) {
+            if let Some(light) = point.join(self.propagator, at, (way, probability), &mut waypoints) {
                 sum += self.connected_light(at, shading, &light, stats);
             }
         }
