@@ -260,6 +260,17 @@ mod tests {
         Some((at, point))
     }
 
+    /// `point` joined to the shading point of `at` `way` round, tried with that way's probability.
+    fn joined<'w>(
+        propagator: &Propagator,
+        at: &Arrival,
+        point: &LightPoint,
+        way: Way,
+        waypoints: &'w mut Waypoints,
+    ) -> Option<Candidate<'w>> {
+        point.join(propagator, at, (way, way_probability(way, at.hit.p, point.position())), waypoints)
+    }
+
     /// The triangle tests never clear a connection that tracing finds blocked, and they clear a
     /// good part of the others, either way round, with the same frequency shift.
     #[test]
@@ -271,14 +282,7 @@ mod tests {
             for _ in 0..400 {
                 let Some((at, point)) = shading_point(&world, &propagator, &mut uniform) else { continue };
                 let mut waypoints = Waypoints::default();
-                let Some(candidate) = point.join(
-                    &propagator,
-                    &at,
-                    (way, way_probability(way, at.hit.p, point.position())),
-                    &mut waypoints,
-                ) else {
-                    continue;
-                };
+                let Some(candidate) = joined(&propagator, &at, &point, way, &mut waypoints) else { continue };
                 let mut stats = PathStats::default();
                 let traced = candidate.traced(&world, &propagator, &at, at.ng_local, &mut stats);
                 let clear = candidate.is_clear(&world, &propagator, &at);
@@ -319,14 +323,7 @@ mod tests {
             for _ in 0..300 {
                 let Some((at, point)) = shading_point(&world, &propagator, &mut uniform) else { continue };
                 let mut waypoints = Waypoints::default();
-                let Some(candidate) = point.join(
-                    &propagator,
-                    &at,
-                    (way, way_probability(way, at.hit.p, point.position())),
-                    &mut waypoints,
-                ) else {
-                    continue;
-                };
+                let Some(candidate) = joined(&propagator, &at, &point, way, &mut waypoints) else { continue };
                 let origin = leave(at.hit.p, at.hit.ng, at.ng_local, candidate.wi);
                 let RayEnd::Hit(arrival) = propagator.trace(&world, Region::Upper, origin, candidate.wi) else {
                     continue;
