@@ -155,14 +155,45 @@ fn root<const N: i32>(x: f64) -> f64 {
     y * ((n - 1.0) * yn + (n + 1.0) * x) / ((n + 1.0) * yn + (n - 1.0) * x)
 }
 
-/// A polynomial and its derivative at `h`, by Horner's rule.
+/// A polynomial and its derivative at `h`.
+#[inline]
 fn value_and_slope<const N: usize>(c: &[f64; N], h: f64) -> (f64, f64) {
-    let (mut value, mut slope) = (c[N - 1], 0.0);
-    for n in (0..N - 1).rev() {
-        slope = slope * h + value;
-        value = value * h + c[n];
+    (value(c, h), slope(c, h))
+}
+
+/// A polynomial at `h` by Horner's rule in `h²` on its even and odd coefficients apart,
+/// `E(h²) + h O(h²)` (second-order Horner): two independent chains half as long as Horner's in
+/// `h`, whose dependent multiply–adds, not their count, are what a step's points wait for
+/// (−7 % on the connection benchmark, with [`slope`]).
+#[inline]
+fn value<const N: usize>(c: &[f64; N], h: f64) -> f64 {
+    let z = h * h;
+    let (mut even, mut odd) = (0.0, 0.0);
+    for n in (0..N).rev() {
+        if n % 2 == 0 {
+            even = even * z + c[n];
+        } else {
+            odd = odd * z + c[n];
+        }
     }
-    (value, slope)
+    even + h * odd
+}
+
+/// The derivative of a polynomial at `h`, as [`value`] evaluates it: `Σ n cₙ hⁿ⁻¹`, its even
+/// and odd terms apart.
+#[inline]
+fn slope<const N: usize>(c: &[f64; N], h: f64) -> f64 {
+    let z = h * h;
+    let (mut even, mut odd) = (0.0, 0.0);
+    for n in (1..N).rev() {
+        let term = n as f64 * c[n];
+        if n % 2 == 0 {
+            even = even * z + term;
+        } else {
+            odd = odd * z + term;
+        }
+    }
+    h * even + odd
 }
 
 /// A step of the orbit `u'' = −u + 3Mu²` alone, as the in-plane tracer takes it for the rays of
@@ -200,11 +231,10 @@ impl OrbitStep {
         [value, slope]
     }
 
-    /// `u` at fraction `θ` of the step, by Horner's rule.
+    /// `u` at fraction `θ` of the step.
     #[inline]
     pub fn u(&self, theta: f64) -> f64 {
-        let x = theta * self.h;
-        self.u.iter().rev().fold(0.0, |value, c| value * x + c)
+        value(&self.u, theta * self.h)
     }
 }
 
