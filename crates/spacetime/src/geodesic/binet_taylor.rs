@@ -65,23 +65,32 @@ impl Series {
         let m6 = 6.0 * mass;
         let mut s = Series { u: orbit_coefficients(mass, y[0], y[1]), j: [0.0; ORDER + 1], k: [0.0; K_ORDER + 1] };
         [s.j[0], s.j[1], s.k[0], s.k[1]] = [y[2], y[3], y[4], y[5]];
-        // Slices and zipped iterators: no index checks inside the loops.
-        for n in 0..K_ORDER - 1 {
-            let (u, j, k) = (&s.u[..=n], &s.j[..=n], &s.k[..=n]);
-            let (mut uj, mut ukjj) = (0.0, 0.0);
-            for ((&a, &b), (&jn, &kn)) in u.iter().zip(j).zip(j.iter().rev().zip(k.iter().rev())) {
-                uj += a * jn;
-                ukjj += a * kn + b * jn;
-            }
-            let scale = RECIPROCALS[n];
-            s.j[n + 2] = (-s.j[n] + m6 * uj) * scale;
-            s.k[n + 2] = (-s.k[n] + m6 * ukjj) * scale;
-        }
-        for n in K_ORDER - 1..ORDER - 1 {
-            let uj: f64 = s.u[..=n].iter().zip(s.j[..=n].iter().rev()).map(|(a, b)| a * b).sum();
-            s.j[n + 2] = (-s.j[n] + m6 * uj) * RECIPROCALS[n];
-        }
+        let newest = m6 * s.u[0] - 1.0;
+        s.next_jk::<0>(m6, newest);
+        s.next_jk::<1>(m6, newest);
+        s.next_jk::<2>(m6, newest);
+        s.next_jk::<3>(m6, newest);
+        s.next_jk::<4>(m6, newest);
+        s.next_j::<5>(m6, newest);
+        s.next_j::<6>(m6, newest);
+        s.next_j::<7>(m6, newest);
+        s.next_j::<8>(m6, newest);
         s
+    }
+
+    /// `J_{N+2}` from `(u∗J)_N = u₀J_N + Σ uᵢJ_{N−i}`: as for `u` ([`orbit_coefficients`]), the
+    /// newest coefficient enters by one multiply–add, `(6Mu₀ − 1) J_N`.
+    #[inline(always)]
+    fn next_j<const N: usize>(&mut self, m6: f64, newest: f64) {
+        self.j[N + 2] = (newest * self.j[N] + m6 * product_without_first::<N>(&self.u, &self.j)) * RECIPROCALS[N];
+    }
+
+    /// `J_{N+2}` and `K_{N+2}`, whose recurrence adds `(J∗J)_N`.
+    #[inline(always)]
+    fn next_jk<const N: usize>(&mut self, m6: f64, newest: f64) {
+        let older = product_without_first::<N>(&self.u, &self.k) + square::<N>(&self.j);
+        self.k[N + 2] = (newest * self.k[N] + m6 * older) * RECIPROCALS[N];
+        self.next_j::<N>(m6, newest);
     }
 
     /// The longest step, at most `MAX_STEP`, whose last two terms of `u` and `J` stay within
@@ -109,26 +118,61 @@ impl Series {
 
 /// Coefficients `0..=ORDER` of the orbit `u'' = −u + 3Mu²` through `(u, u')`: its own
 /// recurrence, `aₖ₊₂ = (−aₖ + 3M (a∗a)ₖ) / ((k+1)(k+2))`, needs no other series.
+///
+/// The recurrence is bound by the latency of its chain from `aₖ` to `aₖ₊₂`, not by its
+/// operations: with `(a∗a)ₖ = 2a₀aₖ + (the terms without aₖ)`, `aₖ₊₂ = ((6Ma₀ − 1) aₖ + 3M ·
+/// (the rest)) / ((k+1)(k+2))`, the newest coefficient enters by one multiply–add and the rest
+/// goes ahead of it. Each coefficient is its own instance of [`next_orbit`], so every sum is
+/// unrolled (a loop over `k` was not).
 fn orbit_coefficients(mass: f64, u: f64, du: f64) -> [f64; ORDER + 1] {
+    const _: () = assert!(ORDER == 10 && K_ORDER == 6, "the recurrences are unrolled for these orders");
     let m3 = 3.0 * mass;
+    let newest = 2.0 * m3 * u - 1.0;
     let mut c = [0.0; ORDER + 1];
     [c[0], c[1]] = [u, du];
-    for n in 0..ORDER - 1 {
-        c[n + 2] = (-c[n] + m3 * square(&c, n)) * RECIPROCALS[n];
-    }
+    c[2] = (m3 * u - 1.0) * u * RECIPROCALS[0];
+    next_orbit::<1>(&mut c, m3, newest);
+    next_orbit::<2>(&mut c, m3, newest);
+    next_orbit::<3>(&mut c, m3, newest);
+    next_orbit::<4>(&mut c, m3, newest);
+    next_orbit::<5>(&mut c, m3, newest);
+    next_orbit::<6>(&mut c, m3, newest);
+    next_orbit::<7>(&mut c, m3, newest);
+    next_orbit::<8>(&mut c, m3, newest);
     c
 }
 
-/// Coefficient `n` of a square of series, `(c∗c)ₙ = Σᵢ cᵢ cₙ₋ᵢ`, by its symmetry: twice the
-/// products with `i < n − i`, plus the middle square where `n` is even. The recurrence is bound by
-/// the latency of this sum, not by its operations: halving its terms halves its chain, and
-/// summing `c₀cₙ`, the product of the newest coefficient, last lets the others go ahead of it
-/// (−8 % per series, measured).
+/// `a_{N+2}` of the orbit (`N ≥ 1`): `(a∗a)_N − 2a₀a_N` by its symmetry, twice the products
+/// `aᵢa_{N−i}` with `0 < i < N − i` plus the middle square where `N` is even, the newest
+/// (`a₁a_{N−1}`) last.
 #[inline(always)]
-fn square(c: &[f64], n: usize) -> f64 {
-    let half = n.div_ceil(2);
-    let middle = if n % 2 == 0 { 0.5 * c[n / 2] * c[n / 2] } else { 0.0 };
-    2.0 * c[..half].iter().rev().zip(&c[n + 1 - half..=n]).fold(middle, |sum, (a, b)| sum + a * b)
+fn next_orbit<const N: usize>(c: &mut [f64; ORDER + 1], m3: f64, newest: f64) {
+    let mut rest = if N % 2 == 0 { 0.5 * c[N / 2] * c[N / 2] } else { 0.0 };
+    for i in (1..N.div_ceil(2)).rev() {
+        rest += c[i] * c[N - i];
+    }
+    c[N + 2] = (newest * c[N] + m3 * (2.0 * rest)) * RECIPROCALS[N];
+}
+
+/// `(a∗b)_N − a₀b_N = Σ aᵢb_{N−i}` over `0 < i ≤ N`, the newest `b` (`a₁b_{N−1}`) last.
+#[inline(always)]
+fn product_without_first<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
+    let mut sum = 0.0;
+    for i in (1..N + 1).rev() {
+        sum += a[i] * b[N - i];
+    }
+    sum
+}
+
+/// `(c∗c)_N` by its symmetry: twice the products `cᵢc_{N−i}` with `i < N − i`, plus the middle
+/// square where `N` is even, the newest (`c₀c_N`) last.
+#[inline(always)]
+fn square<const N: usize>(c: &[f64]) -> f64 {
+    let mut sum = if N % 2 == 0 { 0.5 * c[N / 2] * c[N / 2] } else { 0.0 };
+    for i in (0..N.div_ceil(2)).rev() {
+        sum += c[i] * c[N - i];
+    }
+    2.0 * sum
 }
 
 /// The step `h ≤ 1` that keeps both `h^(N−1) ≤ before` and `h^N ≤ last` (bounds in `[0, 1]`):
