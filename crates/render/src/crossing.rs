@@ -60,6 +60,9 @@ const MAX_ITERATIONS: u32 = 60;
 /// distance `1/u` changes fast where `u` is small, its direction `x/|x|` and `u` do not, and
 /// `g = n · x/|x| − (n · p) u` is nearly a sinusoid in the azimuth for Schwarzschild rays, where
 /// the height `s` itself is far from linear on a long step (four iterations instead of two).
+/// Its step needs no distances: with `s' = n · ẋ`, `g/g' = s/(s' − s (x · ẋ)/|x|²)`, and the
+/// lengths are compared squared, so an iteration waits on two divisions instead of two square
+/// roots and four divisions.
 pub fn crossing(
     motion: impl Fn(f64) -> (Vec3, Vec3),
     point: Vec3,
@@ -72,21 +75,24 @@ pub fn crossing(
     let (mut a, mut b) = ((a.0, scaled(a.1)), (b.0, scaled(b.1)));
     // Regula falsi starts it.
     let mut theta = a.0 + (b.0 - a.0) * a.1 / (a.1 - b.1);
+    let tolerance2 = tolerance * tolerance;
     for _ in 0..MAX_ITERATIONS {
         let (x, velocity) = motion(theta);
-        let (distance, speed) = (x.length(), velocity.length());
-        let g = normal.dot(x - point) / distance;
-        let slope = (normal.dot(velocity) - g * x.dot(velocity) / distance) / distance;
-        if (g < 0.0) == (a.1 < 0.0) {
-            a = (theta, g);
+        let height = normal.dot(x - point);
+        let slope = normal.dot(velocity) - height * x.dot(velocity) / x.length_squared();
+        // Only the signs of the bracket's heights are read from here on.
+        if (height < 0.0) == (a.1 < 0.0) {
+            a = (theta, height);
         } else {
-            b = (theta, g);
+            b = (theta, height);
         }
         // Newton's step counts only where it stays in the bracket: a ray leaving the plane, just
         // off it, points back to where it left, not to where it comes back through.
-        let newton = theta - g / slope;
+        let newton = theta - height / slope;
         let inside = newton >= a.0 && newton <= b.0;
-        if (inside && ((newton - theta) * speed).abs() <= tolerance) || (b.0 - a.0) * speed <= tolerance {
+        let speed2 = velocity.length_squared();
+        let short = |dtheta: f64| dtheta * dtheta * speed2 <= tolerance2;
+        if (inside && short(newton - theta)) || short(b.0 - a.0) {
             return (theta, x);
         }
         theta = if inside { newton } else { 0.5 * (a.0 + b.0) };
