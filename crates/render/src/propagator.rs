@@ -232,9 +232,9 @@ impl Propagator {
         if kappa == 1.0 || p == Vec3::ZERO {
             return n;
         }
-        let r = p.normalize();
-        let radial = n.dot(r);
-        (n + (kappa - 1.0) * radial * r).normalize()
+        // n + (κ − 1)(n · p̂) p̂, with p̂ = p/|p| folded into one factor of p: no square root
+        // of p's own (the chain to the result is κ's square roots and the last normalisation).
+        (n + ((kappa - 1.0) * n.dot(p) / p.length_squared()) * p).normalize()
     }
 
     /// Traces the ray that leaves world point `origin` of `region` along the local-frame unit
