@@ -792,6 +792,28 @@ mod tests {
         assert!(back_on_board > 400, "{back_on_board} rays came back to the board");
     }
 
+    /// The normal a static observer measures is the gradient covector's: its radial component
+    /// is scaled by `κ = √(1 − 2M/r)` against the tangential ones, then normalised. Checked at a
+    /// point 1.5 from a hole of mass 0.3 (κ = √0.6) for normals along, across and at a slant to
+    /// the radial direction.
+    #[test]
+    fn local_normals_scale_the_radial_component_by_kappa() {
+        let propagator =
+            Propagator::new(Spacetime::Schwarzschild(Schwarzschild::new(0.3)), 11.0, 1e-7, Intersection::Chord);
+        let p = Vec3::new(0.9, -1.2, 0.0);
+        let (radial, across) = (p.normalize(), Vec3::Z);
+        let kappa = 0.6f64.sqrt();
+        for (n_r, n_t) in [(1.0, 0.0), (0.0, 1.0), (0.6, 0.8), (-0.8, 0.6)] {
+            let n = n_r * radial + n_t * across;
+            let expected = (kappa * n_r * radial + n_t * across).normalize();
+            let local = propagator.local_normal(Region::Upper, p, n);
+            assert!((local - expected).length() < 1e-14, "{n}: {local} vs {expected}");
+        }
+        // Without mass it is the world's.
+        let flat = Propagator::new(Spacetime::Schwarzschild(Schwarzschild::new(0.0)), 11.0, 1e-7, Intersection::Chord);
+        assert_eq!(flat.local_normal(Region::Upper, p, Vec3::new(0.6, 0.8, 0.0)), Vec3::new(0.6, 0.8, 0.0));
+    }
+
     /// No object reaches into the ball about the centre of radius `empty_radius`: the room's
     /// lamp hangs 3.98 from it; the board of the test scene passes through its plane, but its
     /// box keeps 1 away.
