@@ -1,0 +1,39 @@
+//! `nullpath bench room` as a user runs it: one JSON object with both scenes' measurements and
+//! the curved ÷ flat ratio of each interleaved pair with their median; bad sizes are refused.
+
+#![allow(clippy::unwrap_used)] // A panic is a failed test.
+
+use std::process::Command;
+
+fn nullpath(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_nullpath")).args(args).output().unwrap()
+}
+
+#[test]
+fn the_room_reports_each_pairs_ratio_and_their_median() {
+    let out = nullpath(&["bench", "room", "--size", "4", "--repeat", "3", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["workload"], "room");
+    for (scene, name) in [("curved", "room (black hole)"), ("flat", "room (mass 0)")] {
+        assert_eq!(v[scene]["workload"], name);
+        let results = v[scene]["results"].as_array().unwrap();
+        assert_eq!(results[0]["threads"], 1);
+        // 4 × 4 pixels at 64 samples each.
+        assert!(results.iter().all(|r| r["samples"] == 1024 && r["seconds"].as_f64().unwrap() > 0.0));
+    }
+    // One pair per repetition on all threads; the median is the middle one of three.
+    let mut pairs: Vec<f64> =
+        v["curved_over_flat"]["pairs"].as_array().unwrap().iter().map(|r| r.as_f64().unwrap()).collect();
+    assert_eq!(pairs.len(), 3);
+    assert!(pairs.iter().all(|r| r.is_finite() && *r > 0.0), "{pairs:?}");
+    pairs.sort_by(f64::total_cmp);
+    assert_eq!(v["curved_over_flat"]["median"].as_f64().unwrap(), pairs[1]);
+}
+
+#[test]
+fn a_size_out_of_range_is_refused() {
+    let out = nullpath(&["bench", "room", "--size", "0"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--size 0"), "{}", String::from_utf8_lossy(&out.stderr));
+}
