@@ -88,7 +88,7 @@ impl Series {
     /// `J_{N+2}` and `K_{N+2}`, whose recurrence adds `(J∗J)_N`.
     #[inline(always)]
     fn next_jk<const N: usize>(&mut self, m6: f64, newest: f64) {
-        let older = product_without_first::<N>(&self.u, &self.k) + square::<N>(&self.j);
+        let older = product_without_first::<N>(&self.u, &self.k) + square_from::<0, N>(&self.j);
         self.k[N + 2] = (newest * self.k[N] + m6 * older) * RECIPROCALS[N];
         self.next_j::<N>(m6, newest);
     }
@@ -142,16 +142,10 @@ fn orbit_coefficients(mass: f64, u: f64, du: f64) -> [f64; ORDER + 1] {
     c
 }
 
-/// `a_{N+2}` of the orbit (`N ≥ 1`): `(a∗a)_N − 2a₀a_N` by its symmetry, twice the products
-/// `aᵢa_{N−i}` with `0 < i < N − i` plus the middle square where `N` is even, the newest
-/// (`a₁a_{N−1}`) last.
+/// `a_{N+2}` of the orbit (`N ≥ 1`), from `(a∗a)_N − 2a₀a_N`.
 #[inline(always)]
 fn next_orbit<const N: usize>(c: &mut [f64; ORDER + 1], m3: f64, newest: f64) {
-    let mut rest = if N % 2 == 0 { 0.5 * c[N / 2] * c[N / 2] } else { 0.0 };
-    for i in (1..N.div_ceil(2)).rev() {
-        rest += c[i] * c[N - i];
-    }
-    c[N + 2] = (newest * c[N] + m3 * (2.0 * rest)) * RECIPROCALS[N];
+    c[N + 2] = (newest * c[N] + m3 * square_from::<1, N>(c)) * RECIPROCALS[N];
 }
 
 /// `(a∗b)_N − a₀b_N = Σ aᵢb_{N−i}` over `0 < i ≤ N`, the newest `b` (`a₁b_{N−1}`) last.
@@ -164,12 +158,13 @@ fn product_without_first<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
     sum
 }
 
-/// `(c∗c)_N` by its symmetry: twice the products `cᵢc_{N−i}` with `i < N − i`, plus the middle
-/// square where `N` is even, the newest (`c₀c_N`) last.
+/// `(c∗c)_N` without its terms `cᵢc_{N−i}` of `i < FROM` or `N − i < FROM`, by its symmetry:
+/// twice the products with `FROM ≤ i < N − i`, plus the middle square where `N` is even, the
+/// newest (`c_FROM c_{N−FROM}`) last. `FROM = 0` is the whole square.
 #[inline(always)]
-fn square<const N: usize>(c: &[f64]) -> f64 {
+fn square_from<const FROM: usize, const N: usize>(c: &[f64]) -> f64 {
     let mut sum = if N % 2 == 0 { 0.5 * c[N / 2] * c[N / 2] } else { 0.0 };
-    for i in (0..N.div_ceil(2)).rev() {
+    for i in (FROM..N.div_ceil(2)).rev() {
         sum += c[i] * c[N - i];
     }
     2.0 * sum

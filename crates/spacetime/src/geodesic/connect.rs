@@ -58,7 +58,7 @@
 //! which is `1/d²` in flat space (`J = sin φ`, law of sines).
 
 use super::binet_taylor;
-use super::plane::PlaneAxes;
+use super::plane::{PlaneAxes, PlaneMetric};
 use super::start_table::start_table;
 use super::tangent_triangle::tangent_triangle;
 use crate::metric::Schwarzschild;
@@ -478,9 +478,9 @@ impl Ends {
         if !(self.jacobi > 0.0) {
             return None;
         }
-        // `1/σ = √(1 − 2Mu)`, the radial scale of the static frame; multiplied in, not divided
-        // by, and where a direction is normalised anyway, onto the other component.
-        let lapse = |u: f64| (1.0 - 2.0 * metric.mass * u).sqrt();
+        // `1/σ = √(1 − 2Mu)`, the static frame's radial scale (the lapse); multiplied in, not
+        // divided by, and where a direction is normalised anyway, onto the other component.
+        let lapse = |u: f64| metric.lapse(u);
         let StartDirection { sin: s_psi, cos: c_psi } = self.start;
         let start = std::array::from_fn(|i| c_psi * self.xh[i] + s_psi * self.e2[i]);
         let start_tangent =
