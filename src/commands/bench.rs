@@ -99,37 +99,20 @@ fn room(args: &Args) -> Result<(), String> {
         .map_err(|e| e.to_string())?;
     let flat =
         render::scene::Scene { spacetime: spacetime::Spacetime::Minkowski(spacetime::Minkowski), ..curved.clone() };
-    let scenes = [("room (black hole)", workload(args, curved)), ("room (mass 0)", workload(args, flat))];
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let cancel = AtomicBool::new(false);
-    let mut rows: [Vec<(usize, RenderStats)>; 2] = Default::default();
-    let mut ratios = Vec::new();
-    for threads in [1, cores] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| e.to_string())?;
-        let mut best: [Option<RenderStats>; 2] = [None, None];
-        for _ in 0..args.repeat.max(1) {
-            let pair = scenes.each_ref().map(|(_, scene)| render_once(&pool, scene, &cancel));
-            if threads == cores {
-                ratios.push(pair[0].seconds / pair[1].seconds);
-            }
-            for (best, stats) in best.iter_mut().zip(pair) {
-                *best = fastest(best.take(), stats);
-            }
-        }
-        for (rows, best) in rows.iter_mut().zip(best) {
-            rows.extend(best.map(|stats| (threads, stats)));
-        }
-    }
+    let names = ["room (black hole)", "room (mass 0)"];
+    let scenes = [workload(args, curved), workload(args, flat)];
+    let (rows, turns) = in_turn(args, &scenes)?;
+    let ratios: Vec<f64> = turns.iter().map(|[curved, flat]| curved / flat).collect();
     let median = median(&ratios);
     if args.json {
-        let [curved, flat] = [0, 1].map(|i| report_json(scenes[i].0, &scenes[i].1, &rows[i]));
+        let [curved, flat] = [0, 1].map(|i| report_json(names[i], &scenes[i], &rows[i]));
         println!(
             "{}",
             serde_json::json!({ "workload": "room", "curved": curved, "flat": flat,
                 "curved_over_flat": { "median": median, "pairs": ratios } })
         );
     } else {
-        for ((name, scene), rows) in scenes.iter().zip(&rows) {
+        for ((name, scene), rows) in names.iter().zip(&scenes).zip(&rows) {
             report_text(name, scene, rows);
         }
         let pairs = ratios.iter().map(|r| format!("{r:.2}")).collect::<Vec<_>>().join(", ");
@@ -152,6 +135,9 @@ fn median(values: &[f64]) -> f64 {
     0.5 * (sorted[(n - 1) / 2] + sorted[n / 2])
 }
 
+/// A scene's fastest render on each thread count: `(threads, stats)`.
+type Rows = Vec<(usize, RenderStats)>;
+
 /// `scene` as the scene benchmarks render it: `size`², 64 spp, depth 8.
 fn workload(args: &Args, mut scene: render::scene::Scene) -> render::scene::Scene {
     let size = args.size.unwrap_or(256);
@@ -162,40 +148,52 @@ fn workload(args: &Args, mut scene: render::scene::Scene) -> render::scene::Scen
     scene
 }
 
-fn render_once(pool: &rayon::ThreadPool, scene: &render::scene::Scene, cancel: &AtomicBool) -> RenderStats {
-    pool.install(|| render::renderer::render(scene, cancel, &|_, _| {})).1
-}
-
-fn fastest(best: Option<RenderStats>, stats: RenderStats) -> Option<RenderStats> {
-    Some(match best {
-        Some(best) if best.seconds <= stats.seconds => best,
-        _ => stats,
-    })
+/// Renders `scenes` in turn (each once, then each again, …), `--repeat` turns on one thread and
+/// on all: each scene's fastest render per thread count, and the seconds of every turn on all
+/// threads.
+fn in_turn<const N: usize>(
+    args: &Args,
+    scenes: &[render::scene::Scene; N],
+) -> Result<([Rows; N], Vec<[f64; N]>), String> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let cancel = AtomicBool::new(false);
+    let mut rows: [Rows; N] = std::array::from_fn(|_| Vec::new());
+    let mut turns = Vec::new();
+    for threads in [1, cores] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| e.to_string())?;
+        let mut best: [Option<RenderStats>; N] = std::array::from_fn(|_| None);
+        for _ in 0..args.repeat.max(1) {
+            let turn =
+                scenes.each_ref().map(|scene| pool.install(|| render::renderer::render(scene, &cancel, &|_, _| {})).1);
+            if threads == cores {
+                turns.push(turn.each_ref().map(|stats| stats.seconds));
+            }
+            for (best, stats) in best.iter_mut().zip(turn) {
+                if best.as_ref().is_none_or(|b| stats.seconds < b.seconds) {
+                    *best = Some(stats);
+                }
+            }
+        }
+        for (rows, best) in rows.iter_mut().zip(best) {
+            rows.extend(best.map(|stats| (threads, stats)));
+        }
+    }
+    Ok((rows, turns))
 }
 
 /// Renders `scene` on one thread and on all, `--repeat` times each, and reports the fastest.
 fn scene_bench(args: &Args, name: &str, scene: render::scene::Scene) -> Result<(), String> {
-    let scene = workload(args, scene);
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let cancel = AtomicBool::new(false);
-    let mut rows = Vec::new();
-    for threads in [1, cores] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| e.to_string())?;
-        let mut best = None;
-        for _ in 0..args.repeat.max(1) {
-            best = fastest(best, render_once(&pool, &scene, &cancel));
-        }
-        rows.extend(best.map(|stats| (threads, stats)));
-    }
+    let scene = [workload(args, scene)];
+    let ([rows], _) = in_turn(args, &scene)?;
     if args.json {
-        println!("{}", report_json(name, &scene, &rows));
+        println!("{}", report_json(name, &scene[0], &rows));
     } else {
-        report_text(name, &scene, &rows);
+        report_text(name, &scene[0], &rows);
     }
     Ok(())
 }
 
-fn report_json(name: &str, scene: &render::scene::Scene, rows: &[(usize, RenderStats)]) -> serde_json::Value {
+fn report_json(name: &str, scene: &render::scene::Scene, rows: &Rows) -> serde_json::Value {
     let results: Vec<_> = rows
         .iter()
         .map(|(threads, s)| {
@@ -205,12 +203,20 @@ fn report_json(name: &str, scene: &render::scene::Scene, rows: &[(usize, RenderS
             })
         })
         .collect();
-    serde_json::json!({ "workload": name, "size": scene.settings.width, "spp": 64, "max_depth": 8, "results": results })
+    let settings = &scene.settings;
+    serde_json::json!({ "workload": name, "size": settings.width, "spp": settings.spp, "max_depth": settings.max_depth,
+        "results": results })
 }
 
-fn report_text(name: &str, scene: &render::scene::Scene, rows: &[(usize, RenderStats)]) {
-    let size = scene.settings.width;
-    println!("{name}: {size}×{size}, 64 spp, depth 8, spacetime {}", scene.spacetime.name());
+fn report_text(name: &str, scene: &render::scene::Scene, rows: &Rows) {
+    let settings = &scene.settings;
+    println!(
+        "{name}: {0}×{0}, {1} spp, depth {2}, spacetime {3}",
+        settings.width,
+        settings.spp,
+        settings.max_depth,
+        scene.spacetime.name()
+    );
     println!("{:>7} {:>10} {:>12} {:>14} {:>14}", "threads", "seconds", "samples", "samples/s", "rays/s");
     for (threads, s) in rows {
         println!(

@@ -1,5 +1,5 @@
 //! Latency against throughput of the in-plane tracer's Taylor steps (`OrbitStep`, M = 0.3, the
-//! black-hole room's hole; steps of at most half a radian at rtol 10⁻⁷, as renders take them).
+//! black-hole room's hole; steps of at most a radian at rtol 10⁻⁷, as renders take them).
 //!
 //! Each step's series waits on the last one's end, and inside a step every coefficient waits on
 //! the ones before it: one orbit keeps the core waiting on dependent multiply–adds. Two orbits
@@ -14,7 +14,7 @@ use std::hint::black_box;
 
 const MASS: f64 = 0.3;
 const RTOL: f64 = 1e-7;
-const MAX_STEP: f64 = 0.5;
+const MAX_STEP: f64 = 1.0;
 /// Steps per orbit before it starts over: about a crossing of the room from the camera (r = 7).
 const STEPS_PER_ORBIT: usize = 6;
 const STEPS: usize = 4096;

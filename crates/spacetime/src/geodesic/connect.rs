@@ -480,18 +480,17 @@ impl Ends {
         }
         // `1/σ = √(1 − 2Mu)`, the static frame's radial scale (the lapse); multiplied in, not
         // divided by, and where a direction is normalised anyway, onto the other component.
-        let lapse = |u: f64| metric.lapse(u);
+        let lapse_x = metric.lapse(self.ux);
         let StartDirection { sin: s_psi, cos: c_psi } = self.start;
         let start = std::array::from_fn(|i| c_psi * self.xh[i] + s_psi * self.e2[i]);
-        let start_tangent =
-            normalize3(&std::array::from_fn(|i| c_psi * lapse(self.ux) * self.xh[i] + s_psi * self.e2[i]));
+        let start_tangent = normalize3(&std::array::from_fn(|i| c_psi * lapse_x * self.xh[i] + s_psi * self.e2[i]));
         let at_y = &self.at_y;
         // Static frame: (n_r, n_φ) ∝ (−σ u', u).
-        let end = at_y.along(-self.du, lapse(self.uy) * self.uy);
+        let end = at_y.along(-self.du, metric.lapse(self.uy) * self.uy);
         let end_tangent = world_tangent(at_y, self.uy, self.du);
         // Equation (3), with `1/t_φ = √(u'² + u²)/u` at `y`.
         let density = s_psi.powi(3) * self.uy * self.uy * (self.du * self.du + self.uy * self.uy).sqrt()
-            / (lapse(self.ux) * self.ux * self.jacobi * self.sin_sweep.abs());
+            / (lapse_x * self.ux * self.jacobi * self.sin_sweep.abs());
         let (solid_angle_per_area, swept, axis) = (density, self.sweep, cross3(&self.xh, &self.e2));
         Some(Connection { start, start_tangent, end, end_tangent, solid_angle_per_area, swept, axis })
     }
