@@ -9,7 +9,9 @@
 //! is a hit on the ray to that tolerance. A piece of a step that nothing comes near is not
 //! split: in Schwarzschild spacetime, where every ray bends towards the hole, a piece lies in the
 //! triangle of its chord and end tangents, and one triangle test clears it; elsewhere a box
-//! about the chord, widened by twice the sagitta, does. Where only flat objects come near such a
+//! about the chord, widened by twice the sagitta, does. Pieces inside the ball about the centre
+//! that no object reaches into, or whose triangles lie inside such a box (a room's inside), are
+//! cleared without asking the scene. Where only flat objects come near such a
 //! triangle, the piece is not split either: its crossings of their planes are solved on the curve
 //! itself ([`crate::crossing`]), to a hundredth of `epsilon`.
 //!
@@ -221,6 +223,18 @@ impl Propagator {
         3.0 * m.mass < radius && a.length_squared().max(b.length_squared()) < radius * radius
     }
 
+    /// Whether a triangle stays, with a margin ε, inside the box about the centre that no object
+    /// of `region` reaches into ([`World::empty_box`]): the box is convex, so a piece of ray the
+    /// triangle holds has nothing in its way. Inside a room round the hole this clears pieces
+    /// that the ball cannot (it only reaches the nearest wall or lamp) without a query of the
+    /// scene.
+    fn in_empty_box(&self, world: &World, region: Region, corners: &[Vec3; 3]) -> bool {
+        world.empty_box(region).is_some_and(|empty| {
+            let (min, max) = (empty.min + self.epsilon, empty.max - self.epsilon);
+            corners.iter().all(|c| c.cmpgt(min).all() && c.cmplt(max).all())
+        })
+    }
+
     /// Unit normal in the local frame at `p` for a surface with world normal `n`: the normal is a
     /// covector (the gradient of the surface function), so its radial component scales by `κ`.
     pub fn local_normal(&self, region: Region, p: Vec3, n: Vec3) -> Vec3 {
@@ -401,8 +415,9 @@ impl Propagator {
     }
 
     /// The chord test of the piece of `step` from knot `a` to knot `b`. Nothing can be hit on a
-    /// piece whose tangent triangle (where the ray bends one way) or else whose tube (the box
-    /// about its chord, widened by twice the sagitta) no object comes near. Where only flat
+    /// piece inside the empty ball or, by its tangent triangle, the empty box about the centre,
+    /// nor on one whose tangent triangle (where the ray bends one way) or else whose tube (the
+    /// box about its chord, widened by twice the sagitta) no object comes near. Where only flat
     /// objects come near the triangle, the piece's crossings of their planes are solved on the
     /// curve ([`crate::crossing`]). A piece within ε of its chord is tested by the chord; any
     /// other is halved.
@@ -420,6 +435,9 @@ impl Propagator {
         }
         let triangle = step.tangent_triangle(&a, &b);
         if let Some(corners) = triangle {
+            if self.in_empty_box(world, region, &corners) {
+                return None;
+            }
             // The ray's origin may lie on the surface it leaves.
             let touching = [step.leaves_origin && a.theta == 0.0, false, false];
             match world.triangle_blockers(region, corners, touching, self.epsilon) {
@@ -688,20 +706,28 @@ mod tests {
     use crate::world::Object;
     use spacetime::Schwarzschild;
 
+    /// The black-hole room's walls, all facing in.
+    const ROOM: [[[f64; 3]; 3]; 6] = [
+        [[-6.0, -4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
+        [[-6.0, -4.0, 8.0], [12.0, 0.0, 0.0], [0.0, 0.0, -16.0]],
+        [[-6.0, 4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 0.0, 16.0]],
+        [[-6.0, -4.0, 8.0], [0.0, 0.0, -16.0], [0.0, 8.0, 0.0]],
+        [[6.0, -4.0, -8.0], [0.0, 0.0, 16.0], [0.0, 8.0, 0.0]],
+        [[6.0, -4.0, 8.0], [-12.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
+    ];
+
+    /// The room's walls and its lamp, 0.02 below the ceiling, with `extra` rectangles.
+    fn lit_room(extra: &[[[f64; 3]; 3]]) -> World {
+        let lamp = [[-2.5, 3.98, -2.5], [5.0, 0.0, 0.0], [0.0, 0.0, 5.0]];
+        rectangles(&[&ROOM[..], &[lamp], extra].concat())
+    }
+
     /// No ray leaves a closed room: rays that leave a wall near one of its edges and graze the
     /// wall beside it (0.05° to 5°), where a crossing lies just past an edge and the curve runs
     /// along the next plane, within tolerance of it, all hit a wall.
     #[test]
     fn grazing_rays_do_not_leave_a_closed_room() {
-        // The black-hole room's walls, all facing in.
-        let world = rectangles(&[
-            [[-6.0, -4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
-            [[-6.0, -4.0, 8.0], [12.0, 0.0, 0.0], [0.0, 0.0, -16.0]],
-            [[-6.0, 4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 0.0, 16.0]],
-            [[-6.0, -4.0, 8.0], [0.0, 0.0, -16.0], [0.0, 8.0, 0.0]],
-            [[6.0, -4.0, -8.0], [0.0, 0.0, 16.0], [0.0, 8.0, 0.0]],
-            [[6.0, -4.0, 8.0], [-12.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
-        ]);
+        let world = rectangles(&ROOM);
         let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
         let propagator = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
         let mut uniform = uniform(5);
@@ -828,6 +854,52 @@ mod tests {
         ]);
         assert!((room.empty_radius(Region::Upper) - 3.98).abs() < 1e-12);
         assert_eq!(floor_lamp_board_ball().empty_radius(Region::Lower), f64::INFINITY);
+    }
+
+    /// The empty box about the centre is the room's inside below its lamp; it is cut short where
+    /// objects stand nearer (the test scene's board, 1 along x, and ball), and there is none where
+    /// an object's box holds the centre.
+    #[test]
+    fn the_empty_box_is_the_inside_of_the_room() {
+        let room = lit_room(&[]).empty_box(Region::Upper).unwrap();
+        assert_eq!((room.min, room.max), (Vec3::new(-6.0, -4.0, -8.0), Vec3::new(6.0, 3.98, 8.0)));
+        let scene = floor_lamp_board_ball().empty_box(Region::Upper).unwrap();
+        let infinity = f64::INFINITY;
+        assert_eq!((scene.min, scene.max), (Vec3::new(-infinity, -4.0, -infinity), Vec3::new(1.0, 3.98, 2.0)));
+        let speck = [[-0.01, -0.01, 0.0], [0.02, 0.0, 0.0], [0.0, 0.02, 0.0]];
+        assert!(lit_room(&[speck]).empty_box(Region::Upper).is_none());
+    }
+
+    /// Pieces of rays that the empty box clears find exactly the hits they find where a speck at
+    /// the centre, inside the horizon, takes the box and the ball away: on rays from all over the
+    /// room, many of them to the lamp, whose plane bounds the box 0.02 below the ceiling's.
+    #[test]
+    fn rays_cleared_by_the_empty_box_find_the_hits_they_find_without_it() {
+        let with_box = lit_room(&[]);
+        let without = lit_room(&[[[-0.01, -0.01, 0.0], [0.02, 0.0, 0.0], [0.0, 0.02, 0.0]]]);
+        assert!(without.empty_box(Region::Upper).is_none() && without.empty_radius(Region::Upper) < 0.6);
+        let hole = Spacetime::Schwarzschild(Schwarzschild::new(0.3));
+        let propagator = Propagator::new(hole, 11.0, 1e-7, Intersection::Chord);
+        let mut uniform = uniform(13);
+        let mut on_lamp = 0;
+        for k in 0..2000 {
+            let origin = Vec3::new(11.0 * uniform() - 5.5, 7.0 * uniform() - 3.5, 15.0 * uniform() - 7.5);
+            let z = 2.0 * uniform() - 1.0;
+            let (sin, cos) = (std::f64::consts::TAU * uniform()).sin_cos();
+            let direction = Vec3::new((1.0 - z * z).sqrt() * cos, z, (1.0 - z * z).sqrt() * sin);
+            match (
+                propagator.trace(&with_box, Region::Upper, origin, direction),
+                propagator.trace(&without, Region::Upper, origin, direction),
+            ) {
+                (RayEnd::Hit(a), RayEnd::Hit(b)) => {
+                    assert_eq!((a.object, a.hit.p), (b.object, b.hit.p), "ray {k} from {origin} along {direction}");
+                    on_lamp += usize::from(a.object == ROOM.len());
+                }
+                (RayEnd::Captured, RayEnd::Captured) => {}
+                (a, b) => panic!("ray {k} from {origin} along {direction}: {a:?} vs {b:?}"),
+            }
+        }
+        assert!(on_lamp > 50, "{on_lamp} rays reached the lamp");
     }
 
     /// Pieces of rays inside the empty ball are not tested against the scene: rays through it find

@@ -64,6 +64,8 @@ struct RegionScene {
     sky: Sky,
     /// Radius of the ball about the world origin that no object reaches into.
     empty_radius: f64,
+    /// A box about the world origin that no object reaches into ([`empty_box`]).
+    empty_box: Option<Aabb>,
 }
 
 impl RegionScene {
@@ -97,8 +99,37 @@ impl RegionScene {
                 b.distance_to(Vec3::ZERO).max(to_plane)
             })
             .fold(f64::INFINITY, f64::min);
-        Self { objects, bounds, planes, bvh, lights, light_cdf, light_power: total, sky, empty_radius }
+        let empty_box = empty_box(&bounds);
+        Self { objects, bounds, planes, bvh, lights, light_cdf, light_power: total, sky, empty_radius, empty_box }
     }
+}
+
+/// A box that holds the world origin strictly inside and none of the boxes `bounds` (faces may
+/// touch): where a spacetime's centre sits in a room, the room's inside. Built by cutting space,
+/// nearest box first, at the face of each box in its way that lies farthest from the origin;
+/// `None` where a box holds the origin.
+fn empty_box(bounds: &[Aabb]) -> Option<Aabb> {
+    let mut nearest_first: Vec<&Aabb> = bounds.iter().collect();
+    nearest_first.sort_by(|a, b| a.distance_to(Vec3::ZERO).total_cmp(&b.distance_to(Vec3::ZERO)));
+    let mut empty = Aabb { min: Vec3::NEG_INFINITY, max: Vec3::INFINITY };
+    for object in nearest_first {
+        if (0..3).any(|k| object.min[k] >= empty.max[k] || object.max[k] <= empty.min[k]) {
+            continue;
+        }
+        // Its faces beyond the origin on each axis: a cut at one keeps the origin inside.
+        let beyond = (0..3).filter_map(|k| match (object.min[k], object.max[k]) {
+            (low, _) if low > 0.0 => Some((k, low)),
+            (_, high) if high < 0.0 => Some((k, high)),
+            _ => None,
+        });
+        let (k, at) = beyond.max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
+        if at > 0.0 {
+            empty.max[k] = at;
+        } else {
+            empty.min[k] = at;
+        }
+    }
+    Some(empty)
 }
 
 /// The flat objects in the way of a triangle (indices; a few bytes to return, where their planes
@@ -259,6 +290,12 @@ impl World {
     /// of `region` reaches into: infinite without objects.
     pub fn empty_radius(&self, region: Region) -> f64 {
         self.region(region).empty_radius
+    }
+
+    /// A box about the world origin that no object of `region` reaches into (`None` where an
+    /// object's box holds the origin): the room round a hole at the origin.
+    pub fn empty_box(&self, region: Region) -> Option<Aabb> {
+        self.region(region).empty_box
     }
 
     /// The plane a flat object lies in, as a point and the unit normal ([`Shape::supporting_plane`]).
