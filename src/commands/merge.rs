@@ -69,8 +69,9 @@ pub fn run(args: &Args) -> Result<(), String> {
                 p.path.display()
             ));
         }
-        if let Some(other) = parts.iter().find(|q| q.part == p.part && q.path != p.path) {
-            return Err(format!("{} and {} are both part {}", p.path.display(), other.path.display(), p.part));
+        let mut same_part = parts.iter().filter(|q| q.part == p.part);
+        if let (Some(a), Some(b)) = (same_part.next(), same_part.next()) {
+            return Err(format!("{} and {} are both part {}", a.path.display(), b.path.display(), p.part));
         }
     }
     let missing: Vec<String> =

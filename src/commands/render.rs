@@ -383,7 +383,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
     if part != Part::WHOLE && goal.noise.is_some() {
         return Err("--noise-target decides from the whole image, so it cannot be used with --part".to_owned().into());
     }
-    check_path(&args.output, "output", part != Part::WHOLE)?;
+    check_path(&args.output, "output", args.part.is_some())?;
     check_path(&args.checkpoint_path(), "--checkpoint", true)?;
     if let Some(path) = &args.stats {
         check_stats_path(path)?;
@@ -405,7 +405,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
     if let Some(reason) = interrupts.reason().filter(|_| !stats.is_complete()) {
         return interrupted(args, &scene, &stats, reason, save(&film, &targets, &stats));
     }
-    if part == Part::WHOLE {
+    if args.part.is_none() {
         write_image(&film, &args.output, &scene.settings.tonemap, &metadata(&stats)).map_err(|e| e.to_string())?;
     } else {
         write_checkpoint(&args.output, &film, &targets, &metadata(&stats)).map_err(|e| e.to_string())?;
@@ -421,7 +421,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
     }
     if !args.options.quiet {
         eprintln!("wrote {}", summary(&stats, &scene));
-        eprintln!("{}: {}", if part == Part::WHOLE { "image" } else { "part" }, args.output.display());
+        eprintln!("{}: {}", if args.part.is_none() { "image" } else { "part" }, args.output.display());
     }
     Ok(())
 }
