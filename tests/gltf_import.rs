@@ -409,3 +409,40 @@ fn materials_can_be_overridden_by_name_or_all_at_once() {
     let all = format!("{base}material = {{ type = \"mirror\" }}\n");
     assert_eq!(kinds(&load(&dir, &all).unwrap()), ["mirror", "mirror"]);
 }
+
+#[test]
+fn a_point_light_lights_the_floor_by_the_inverse_square_law() {
+    // A KHR_lights_punctual point light of intensity I at height h above a diffuse floor of
+    // reflectance ρ: E = I/h² below it, and the floor's radiance is ρE/π. A spot light and a
+    // directional one are left out (with warnings).
+    let (h, intensity, rho) = (2.0f64, 3.0f64, 0.5f64);
+    let expected = rho * intensity / (h * h) / std::f64::consts::PI;
+    let dir = temp_dir("point-light");
+    let extra = json!({
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": { "KHR_lights_punctual": { "lights": [
+            { "type": "point", "color": [1.0, 1.0, 1.0], "intensity": intensity },
+            { "type": "spot", "intensity": 100.0, "spot": {} },
+            { "type": "directional", "intensity": 100.0 },
+        ] } },
+    });
+    let nodes = json!([
+        { "translation": [0.0, h, 0.0], "extensions": { "KHR_lights_punctual": { "light": 0 } } },
+        { "translation": [0.0, 1.0, 0.0], "extensions": { "KHR_lights_punctual": { "light": 1 } } },
+        { "extensions": { "KHR_lights_punctual": { "light": 2 } } },
+        { "mesh": 0, "translation": [50.0, 0.0, 0.0] },
+    ]);
+    let file = write_gltf(&dir, "lamp", &[one_triangle()], nodes, extra);
+    let text = format!(
+        "[camera]\nposition = [0, 0.5, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, 1]\nfov = 2\n\
+         [render]\nwidth = 2\nheight = 2\nspp = 256\n\
+         [[objects]]\nshape = {{ type = \"plane\", point = [0, 0, 0], normal = [0, 1, 0] }}\n\
+         material = {{ type = \"diffuse\", reflectance = {rho} }}\n\
+         [[objects]]\ngltf = \"{file}\"\n"
+    );
+    let s = load(&dir, &text).unwrap();
+    assert_eq!(s.world.light_count(Region::Upper), 1, "the point light only");
+    let pixels = render(&s);
+    let mean = pixels.iter().map(|p| p.iter().sum::<f64>() / 3.0).sum::<f64>() / pixels.len() as f64;
+    assert!((mean / expected - 1.0).abs() < 0.01, "floor radiance {mean}, inverse square law {expected}");
+}

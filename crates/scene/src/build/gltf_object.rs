@@ -5,15 +5,27 @@
 //! [`Instance`]s (its triangles and BVH are stored once); one placed once is baked into world
 //! triangles, as an OBJ mesh is. Emitting primitives are always baked: lights are sampled
 //! triangle by triangle.
+//!
+//! A `KHR_lights_punctual` point light of radiant intensity `I` becomes a black sphere of radius
+//! [`POINT_LIGHT_RADIUS`] and radiance `L = I / (π r²)`: seen from outside, a uniformly bright
+//! sphere has intensity `L·π r²` in every direction, so it lights everything farther than its
+//! radius as the point would, through the light sampling every area light gets (in curved space
+//! too).
 
 use super::Builder;
 use crate::gltf_import::{self, GltfScene};
 use crate::reader::{Node, Result, Table};
+use render::color::Rgb;
+use render::material::Material;
 use render::shape::{Instance, InstancedMesh, Shape, TriangleMesh};
+use render::texture::Texture;
 use render::transform::Transform;
 use render::world::{Emission, Object};
 use std::collections::HashMap;
 use std::sync::Arc;
+
+/// Radius of the sphere that stands for a point light, in world units (glTF's metres).
+const POINT_LIGHT_RADIUS: f64 = 0.01;
 
 /// What a glTF material becomes in the scene: a material index and its emission.
 type Assigned = (usize, Option<Emission>);
@@ -64,6 +76,18 @@ impl Builder<'_> {
                     material,
                     emission,
                 }));
+            }
+        }
+        if !scene.lights.is_empty() {
+            self.materials.push(Material::Diffuse { reflectance: Texture::Constant(Rgb::ZERO) });
+            let black = self.materials.len() - 1;
+            let area = std::f64::consts::PI * POINT_LIGHT_RADIUS * POINT_LIGHT_RADIUS;
+            for light in &scene.lights {
+                let centre = placement.point(light.position);
+                let shape = Shape::sphere(centre, POINT_LIGHT_RADIUS, &Transform::IDENTITY)
+                    .map_err(|e| in_file(format!("a point light: {e}")))?;
+                let emission = Emission { radiance: light.intensity / area as f32, two_sided: false };
+                objects.push(Object { shape, material: black, emission: Some(emission) });
             }
         }
         if objects.is_empty() {

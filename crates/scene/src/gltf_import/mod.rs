@@ -15,13 +15,15 @@ mod primitive;
 pub(crate) use material::GltfMaterial;
 pub(crate) use primitive::Primitive;
 
+use render::color::Rgb;
+use render::geometry::Vec3;
 use render::transform::Transform;
 use std::path::Path;
 
 /// Extensions whose meaning is imported (see [`material`]). Files that *require* any other are
 /// refused; files that merely *use* another get a warning naming it.
 const SUPPORTED_EXTENSIONS: &[&str] =
-    &["KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_transmission"];
+    &["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_transmission"];
 
 /// A primitive placed by the node hierarchy: `transform` maps the mesh's space to the glTF
 /// file's root space.
@@ -31,10 +33,19 @@ pub(crate) struct Placement {
     pub transform: Transform,
 }
 
+/// A `KHR_lights_punctual` point light, at `position` in the file's root space, of radiant
+/// intensity `intensity` (colour × intensity, per steradian) in every direction.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PointLight {
+    pub position: Vec3,
+    pub intensity: Rgb,
+}
+
 /// What a glTF file holds, ready for the scene builder.
 pub(crate) struct GltfScene {
     pub primitives: Vec<Primitive>,
     pub placements: Vec<Placement>,
+    pub lights: Vec<PointLight>,
     pub materials: Vec<GltfMaterial>,
     /// Things ignored that the user may want to know about (unsupported optional extensions…).
     pub warnings: Vec<String>,
@@ -63,21 +74,22 @@ pub(crate) fn import(path: &Path) -> Result<GltfScene, String> {
         }
     }
     let materials = material::materials(document, base, &buffers, &mut warnings)?;
-    let mut placements = Vec::new();
+    let mut found = Found { first_primitive, placements: Vec::new(), lights: Vec::new(), warnings };
     let roots: Vec<gltf::Node<'_>> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
         None => return Err("has no scene to place (no \"scenes\")".to_string()),
     };
     for node in roots {
-        place(&node, &Transform::IDENTITY, &first_primitive, &mut placements, 0)?;
+        contained(|| place(&node, &Transform::IDENTITY, &mut found, 0), "the node hierarchy")??;
     }
-    if placements.is_empty() {
-        return Err("its scene places no mesh".to_string());
+    let Found { placements, lights, mut warnings, .. } = found;
+    if placements.is_empty() && lights.is_empty() {
+        return Err("its scene places no mesh and no light".to_string());
     }
     if document.cameras().next().is_some() {
         warnings.push("its cameras are not imported (the scene file's [camera] is used)".to_string());
     }
-    Ok(GltfScene { primitives, placements, materials, warnings })
+    Ok(GltfScene { primitives, placements, lights, materials, warnings })
 }
 
 /// Refuses required extensions that are not supported; warns of used ones.
@@ -132,14 +144,17 @@ fn short(uri: &str) -> String {
 /// glTF allows no cycles, but a file may have one: deeper than this is refused.
 const MAX_DEPTH: usize = 256;
 
-/// Places `node`'s mesh (each of its primitives) and its children under `parent`.
-fn place(
-    node: &gltf::Node<'_>,
-    parent: &Transform,
-    first_primitive: &[usize],
-    placements: &mut Vec<Placement>,
-    depth: usize,
-) -> Result<(), String> {
+/// What the node hierarchy places, as it is walked.
+struct Found {
+    /// Each mesh's first primitive in the flat list of primitives.
+    first_primitive: Vec<usize>,
+    placements: Vec<Placement>,
+    lights: Vec<PointLight>,
+    warnings: Vec<String>,
+}
+
+/// Places `node`'s mesh (each of its primitives), its light and its children under `parent`.
+fn place(node: &gltf::Node<'_>, parent: &Transform, found: &mut Found, depth: usize) -> Result<(), String> {
     let name = node_name(node);
     if depth > MAX_DEPTH {
         return Err(format!("{name}: nodes nest deeper than {MAX_DEPTH} levels (a cycle?)"));
@@ -150,13 +165,32 @@ fn place(
         .map_err(|_| format!("{name}: its transform is not finite or not invertible (a zero scale?)"))?;
     let transform = local.then(parent);
     if let Some(mesh) = node.mesh() {
-        let first = first_primitive[mesh.index()];
+        let first = found.first_primitive[mesh.index()];
         for p in mesh.primitives() {
-            placements.push(Placement { primitive: first + p.index(), transform });
+            found.placements.push(Placement { primitive: first + p.index(), transform });
+        }
+    }
+    if let Some(light) = node.light() {
+        let what = named("light", light.index(), light.name());
+        match light.kind() {
+            gltf::khr_lights_punctual::Kind::Point => {
+                let [r, g, b] = light.color().map(|c| c * light.intensity());
+                let intensity = Rgb::new(r, g, b);
+                if !(intensity.is_finite() && intensity.min_element() >= 0.0) {
+                    return Err(format!("{what}: its intensity {intensity} is not a finite non-negative colour"));
+                }
+                found.lights.push(PointLight { position: transform.point(Vec3::ZERO), intensity });
+            }
+            gltf::khr_lights_punctual::Kind::Directional => {
+                found.warnings.push(format!("{what}: directional lights are not imported"));
+            }
+            gltf::khr_lights_punctual::Kind::Spot { .. } => {
+                found.warnings.push(format!("{what}: spot lights are not imported"));
+            }
         }
     }
     for child in node.children() {
-        place(&child, &transform, first_primitive, placements, depth + 1)?;
+        place(&child, &transform, found, depth + 1)?;
     }
     Ok(())
 }
