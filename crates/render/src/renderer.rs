@@ -2,6 +2,7 @@
 //! by (seed, pixel, sample), so the image is bit-identical whatever the thread count; stoppable
 //! at any tile boundary with everything finished so far kept.
 
+use crate::color::Rgb;
 use crate::film::{Film, FilmTile, TileBounds};
 use crate::integrator::{photon, PathIntegrator, PathStats};
 use crate::propagator::Propagator;
@@ -56,11 +57,16 @@ fn render_tile(scene: &Scene, integrator: &PathIntegrator<'_>, bounds: TileBound
         for s in 0..settings.spp {
             let mut sampler = Sampler::for_sample(settings.seed, pixel, u64::from(s));
             let fs = settings.filter.sample(sampler.next_2d());
-            let film_x = f64::from(x) + 0.5 + fs.offset[0];
-            let film_y = f64::from(y) + 0.5 + fs.offset[1];
-            let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, sampler.next_2d());
-            let l = integrator.radiance(scene.camera.region, ray.origin, ray.direction, &mut sampler, &mut stats);
-            tile.add_sample(x, y, l * ray.weight, fs.weight);
+            let size = [settings.width, settings.height];
+            let l = match scene.camera.ray([x, y], fs.offset, size, sampler.next_2d()) {
+                Some(ray) => {
+                    integrator.radiance(scene.camera.region, ray.origin, ray.direction, &mut sampler, &mut stats)
+                        * ray.weight
+                }
+                // Where the camera sees nothing (outside a fisheye's circle) the film is black.
+                None => Rgb::ZERO,
+            };
+            tile.add_sample(x, y, l, fs.weight);
             samples += 1;
         }
     }
