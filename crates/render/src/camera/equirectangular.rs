@@ -89,5 +89,13 @@ mod tests {
             let cell = cells[(row * size[0]) as usize].abs();
             assert!((cell / exact - 1.0).abs() < 0.01, "{size:?}: {cell} vs {exact}");
         }
+        // And every direction is seen: random directions, found at their longitude and latitude
+        // on the film, are the rays there.
+        let mut u = crate::test_scenes::uniform(23);
+        for _ in 0..1000 {
+            let n = crate::sampling::uniform_sphere([u(), u()]);
+            let (x, y) = ((n.x.atan2(-n.z) / PI + 1.0) * 32.0, (0.5 - n.y.asin() / PI) * 32.0);
+            assert!((direction_at(x, y, [64, 32]) - n).length() < 1e-12, "{n}");
+        }
     }
 }

@@ -72,6 +72,8 @@ struct Motion {
 
 /// A camera ray: start point and unit direction in the local frame of the static observer at
 /// the camera, and the factor its radiance is seen with by the (possibly moving) camera.
+/// Start points off `position` (on a thin lens, an ODS eye's circle) are laid out in the static
+/// observer's frame: only directions are boosted, not those small offsets Lorentz-contracted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraRay {
     pub origin: Vec3,
