@@ -29,6 +29,9 @@ const KEYFRAME_KEYS: &[&str] = &["time", "position", "look_at", "up", "fov", "fo
 const ORBIT_KEYS: &[&str] = &["center", "axis", "period"];
 pub(super) const ANIMATION_KEYS: &[&str] = &["fps", "frames"];
 
+/// The index of `"perspective"` in [`PROJECTIONS`], the default.
+const PERSPECTIVE: usize = 0;
+
 /// Reads a projection's own fields from `[camera]`; `start` is the pose at time 0.
 type ReadProjection = fn(&Table<'_>, &Pose) -> Result<Projection>;
 
@@ -56,7 +59,7 @@ impl Builder<'_> {
             focus_distance: t.opt("focus_distance", |n| n.f64())?,
         };
         let names: Vec<&str> = PROJECTIONS.iter().map(|p| p.0).collect();
-        let kind = t.get("projection").map(|n| n.keyword("projection", &names)).transpose()?.unwrap_or(0);
+        let kind = t.get("projection").map(|n| n.keyword("projection", &names)).transpose()?.unwrap_or(PERSPECTIVE);
         only_own_fields(t, kind)?;
         let path = match (t.get("keyframes"), t.get("orbit")) {
             (Some(_), Some(orbit)) => return Err(orbit.err("give either keyframes or an orbit, not both")),
@@ -78,7 +81,11 @@ impl Builder<'_> {
 fn only_own_fields(t: &Table<'_>, kind: usize) -> Result<()> {
     for (i, (owner, fields, _)) in PROJECTIONS.iter().enumerate().filter(|(i, _)| *i != kind) {
         if let Some(n) = fields.iter().find_map(|f| t.get(f)) {
-            let what = if i == 0 { " (field of view, depth of field and focus are a perspective lens's)" } else { "" };
+            let what = if i == PERSPECTIVE {
+                " (field of view, depth of field and focus are a perspective lens's)"
+            } else {
+                ""
+            };
             return Err(n.err(format!(
                 "only used with projection = \"{owner}\"{what}; this camera's projection is \"{}\"",
                 PROJECTIONS[kind].0
