@@ -16,6 +16,7 @@
 
 mod adaptive;
 
+use crate::color::Rgb;
 use crate::film::{noise, Film, FilmTooLarge, TileBounds};
 use crate::integrator::{photon, PathIntegrator, PathStats};
 use crate::propagator::Propagator;
@@ -352,11 +353,16 @@ impl<'s> Renderer<'s> {
                 }
                 let mut sampler = Sampler::for_sample(settings.seed, pixel, u64::from(s));
                 let fs = settings.filter.sample(sampler.next_2d());
-                let film_x = f64::from(x) + 0.5 + fs.offset[0];
-                let film_y = f64::from(y) + 0.5 + fs.offset[1];
-                let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, sampler.next_2d());
-                let l = integrator.radiance(scene.camera.region, ray.origin, ray.direction, &mut sampler, &mut stats);
-                tile.add_sample(x, y, l * ray.weight, fs.weight);
+                let size = [settings.width, settings.height];
+                let l = match scene.camera.ray([x, y], fs.offset, size, sampler.next_2d()) {
+                    Some(ray) => {
+                        integrator.radiance(scene.camera.region, ray.origin, ray.direction, &mut sampler, &mut stats)
+                            * ray.weight
+                    }
+                    // Where the camera sees nothing (outside a fisheye's circle) the film is black.
+                    None => Rgb::ZERO,
+                };
+                tile.add_sample(x, y, l, fs.weight);
                 samples += 1;
             }
             if end < target {

@@ -224,12 +224,17 @@ fn camera_pass(scene: &Scene, camera: &CameraPass<'_>, iteration: u32) -> (Vec<(
                     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
                     let mut sampler = Sampler::for_sample(settings.seed, pixel, u64::from(iteration));
                     let fs = settings.filter.sample(sampler.next_2d());
-                    let film_x = f64::from(x) + 0.5 + fs.offset[0];
-                    let film_y = f64::from(y) + 0.5 + fs.offset[1];
-                    let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, sampler.next_2d());
-                    let beta = Rgb::splat(ray.weight * fs.weight as f32);
-                    let start = (scene.camera.region, ray.origin, ray.direction);
-                    (camera.trace(start, beta, &mut sampler, &mut stats), fs.weight)
+                    let size = [settings.width, settings.height];
+                    let sample = match scene.camera.ray([x, y], fs.offset, size, sampler.next_2d()) {
+                        Some(ray) => {
+                            let beta = Rgb::splat(ray.weight * fs.weight as f32);
+                            let start = (scene.camera.region, ray.origin, ray.direction);
+                            camera.trace(start, beta, &mut sampler, &mut stats)
+                        }
+                        // Where the camera sees nothing (outside a fisheye's circle): black.
+                        None => CameraSample { emitted: Rgb::ZERO, visible: None },
+                    };
+                    (sample, fs.weight)
                 })
                 .collect();
             (row, stats)
