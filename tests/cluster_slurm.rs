@@ -1,0 +1,179 @@
+//! The Slurm job scripts (cluster/slurm/) run on a real Slurm cluster: the frames of an animation
+//! rendered by a job array equal one local `nullpath animate`.
+//!
+//! These tests need a running cluster whose nodes see this machine's temporary directory (the
+//! single-node cluster of `cluster/slurm/local-cluster.sh start` does), so they are ignored by a
+//! plain `cargo test`, which lists them as ignored. `cluster/slurm/ci-test.sh` (run by `.ci/run`)
+//! starts the local cluster and runs them with `--ignored`, or prints SKIPPED with the reason when
+//! this machine cannot run Slurm. Run with `--ignored` and no cluster, they fail: they never pass
+//! without having run on Slurm.
+
+#![allow(clippy::unwrap_used)] // A panic is a failed test.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+const SUBMIT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/cluster/slurm/submit.sh");
+const NEEDS: &str = "needs a Slurm cluster: run cluster/slurm/local-cluster.sh";
+/// Longest wait for a job to finish; the tiny renders take a second, scheduling a few more.
+const TIMEOUT: Duration = Duration::from_secs(180);
+
+/// A lens with its own camera motion: a Schwarzschild hole before a grid sky, the camera orbiting
+/// it, six frames. Tiny, so the cluster's scheduling dominates the test's time.
+const ORBIT: &str = r#"
+[spacetime]
+type = "schwarzschild"
+mass = 1.0
+
+[camera]
+position = [0.0, 2.0, 25.0]
+look_at = [0.0, 0.0, 0.0]
+up = [0, 1, 0]
+fov = 45
+orbit = { center = [0, 0, 0], axis = [0, 1, 0], period = 6 }
+
+[animation]
+fps = 1
+frames = 6
+
+[render]
+width = 32
+height = 24
+spp = 2
+max_depth = 1
+
+[sky]
+type = "grid"
+background = [[0.55, 0.12, 0.1], [0.1, 0.4, 0.12], [0.1, 0.12, 0.5], [0.5, 0.42, 0.1]]
+line = [0.95, 0.95, 0.95]
+spacing_deg = 15
+width_deg = 1.5
+"#;
+
+fn nullpath() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_nullpath"))
+}
+
+/// A fresh directory for one test, in the temporary directory the cluster's node also sees.
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("nullpath-slurm-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Runs `command`, panicking with its output unless it succeeds; returns its stdout.
+fn check(command: &mut Command) -> String {
+    let out = command.output().unwrap_or_else(|e| panic!("cannot run {command:?}: {e}"));
+    assert!(out.status.success(), "{command:?} failed: {}{}", text(&out.stdout), text(&out.stderr));
+    text(&out.stdout)
+}
+
+/// The two jobs `submit.sh` submitted; cancelled when dropped, so a failed test leaves no jobs.
+struct Jobs {
+    render: String,
+    merge: String,
+}
+
+impl Drop for Jobs {
+    fn drop(&mut self) {
+        let _ = Command::new("scancel").args([&self.render, &self.merge]).stderr(Stdio::null()).status();
+    }
+}
+
+/// Submits with `cluster/slurm/submit.sh ARGS` and reads the job ids it prints.
+fn submit(args: &[&str]) -> Jobs {
+    let has_slurm = Command::new("sinfo").arg("--version").output().is_ok_and(|o| o.status.success());
+    assert!(has_slurm, "no Slurm on this machine: {NEEDS} start");
+    let printed =
+        check(Command::new("bash").arg(SUBMIT).args(["--nullpath", env!("CARGO_BIN_EXE_nullpath")]).args(args));
+    let id = |key: &str| {
+        let line = printed.lines().find_map(|l| l.strip_prefix(key));
+        line.unwrap_or_else(|| panic!("submit.sh printed no {key}…: {printed}")).to_string()
+    };
+    Jobs { render: id("render_job="), merge: id("merge_job=") }
+}
+
+/// The `JobState` of each job (each task of an array) that `scontrol` reports for `id`.
+fn job_states(id: &str) -> Vec<String> {
+    let shown = check(Command::new("scontrol").args(["show", "job", "--oneliner", id]));
+    let state = |line: &str| line.split_whitespace().find_map(|f| f.strip_prefix("JobState=")).map(str::to_string);
+    shown.lines().filter_map(state).collect()
+}
+
+/// Waits until the merge job has ended and returns its state, failing after `TIMEOUT`.
+fn wait_for(jobs: &Jobs, logs: &Path) -> String {
+    let start = Instant::now();
+    loop {
+        let states = job_states(&jobs.merge);
+        let state = states.first().cloned().unwrap_or_default();
+        let running = ["PENDING", "CONFIGURING", "RUNNING", "COMPLETING", "SUSPENDED", "REQUEUED"];
+        if !running.contains(&state.as_str()) {
+            return state;
+        }
+        assert!(start.elapsed() < TIMEOUT, "jobs still {state} after {TIMEOUT:?}; logs in {}", logs.display());
+        std::thread::sleep(Duration::from_millis(500));
+    }
+}
+
+/// Everything the job logs in `logs` say, for a failure message.
+fn logs_of(logs: &Path) -> String {
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(logs).unwrap().map(|e| e.unwrap().path()).collect();
+    entries.sort();
+    entries.iter().map(|p| format!("--- {}\n{}", p.display(), std::fs::read_to_string(p).unwrap_or_default())).collect()
+}
+
+/// The linear pixels of an image file.
+fn pixels(path: &Path) -> Vec<f32> {
+    image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_rgb32f().into_raw()
+}
+
+#[test]
+#[ignore = "needs a Slurm cluster: run cluster/slurm/local-cluster.sh"]
+fn animation_frames_rendered_by_a_job_array_equal_a_local_animation() {
+    let dir = temp_dir("frames");
+    let scene = dir.join("orbit.toml");
+    std::fs::write(&scene, ORBIT).unwrap();
+    let (frames, local) = (dir.join("frames"), dir.join("local"));
+    let options = ["--format", "exr", "--seed", "5"];
+    let jobs = submit(&[
+        scene.to_str().unwrap(),
+        "--parts",
+        "3",
+        "--frames",
+        "0..6",
+        "-o",
+        frames.to_str().unwrap(),
+        "--",
+        options[0],
+        options[1],
+        options[2],
+        options[3],
+    ]);
+    let logs = frames.join("logs");
+    let state = wait_for(&jobs, &logs);
+    assert_eq!(state, "COMPLETED", "the assemble job ended {state}:\n{}", logs_of(&logs));
+    // The array ran as three tasks, each a slice of two frames, and all succeeded.
+    assert_eq!(job_states(&jobs.render), ["COMPLETED"; 3], "{}", logs_of(&logs));
+
+    check(
+        nullpath().args(["animate", scene.to_str().unwrap(), "-o", local.to_str().unwrap(), "--quiet"]).args(options),
+    );
+    for n in 0..6 {
+        let name = format!("frame_{n:05}.exr");
+        assert_eq!(
+            pixels(&frames.join(&name)),
+            pixels(&local.join(&name)),
+            "{name} from Slurm differs from the local one"
+        );
+    }
+    let first = pixels(&local.join("frame_00000.exr"));
+    assert_ne!(first, pixels(&local.join("frame_00003.exr")), "the orbiting camera's frames differ");
+    drop(jobs);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
