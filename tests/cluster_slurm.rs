@@ -51,6 +51,13 @@ spacing_deg = 15
 width_deg = 1.5
 "#;
 
+/// Writes the fixture scene into `dir`.
+fn orbit_scene(dir: &Path) -> PathBuf {
+    let scene = dir.join("orbit.toml");
+    std::fs::write(&scene, ORBIT).unwrap();
+    scene
+}
+
 fn nullpath() -> Command {
     Command::new(env!("CARGO_BIN_EXE_nullpath"))
 }
@@ -86,12 +93,17 @@ impl Drop for Jobs {
     }
 }
 
-/// Submits with `cluster/slurm/submit.sh ARGS` and reads the job ids it prints.
-fn submit(args: &[&str]) -> Jobs {
+/// Submits with `cluster/slurm/submit.sh ARGS` (with `path` before PATH, for the jobs too: they
+/// inherit the environment) and reads the job ids it prints.
+fn submit(args: &[&str], path: Option<&Path>) -> Jobs {
     let has_slurm = Command::new("sinfo").arg("--version").output().is_ok_and(|o| o.status.success());
     assert!(has_slurm, "no Slurm on this machine: {NEEDS} start");
-    let printed =
-        check(Command::new("bash").arg(SUBMIT).args(["--nullpath", env!("CARGO_BIN_EXE_nullpath")]).args(args));
+    let mut command = Command::new("bash");
+    command.arg(SUBMIT).args(["--nullpath", env!("CARGO_BIN_EXE_nullpath")]).args(args);
+    if let Some(dir) = path {
+        command.env("PATH", format!("{}:{}", dir.display(), std::env::var("PATH").unwrap_or_default()));
+    }
+    let printed = check(&mut command);
     let id = |key: &str| {
         let line = printed.lines().find_map(|l| l.strip_prefix(key));
         line.unwrap_or_else(|| panic!("submit.sh printed no {key}…: {printed}")).to_string()
@@ -137,24 +149,13 @@ fn pixels(path: &Path) -> Vec<f32> {
 #[ignore = "needs a Slurm cluster: run cluster/slurm/local-cluster.sh"]
 fn animation_frames_rendered_by_a_job_array_equal_a_local_animation() {
     let dir = temp_dir("frames");
-    let scene = dir.join("orbit.toml");
-    std::fs::write(&scene, ORBIT).unwrap();
+    let scene = orbit_scene(&dir);
     let (frames, local) = (dir.join("frames"), dir.join("local"));
     let options = ["--format", "exr", "--seed", "5"];
-    let jobs = submit(&[
-        scene.to_str().unwrap(),
-        "--parts",
-        "3",
-        "--frames",
-        "0..6",
-        "-o",
-        frames.to_str().unwrap(),
-        "--",
-        options[0],
-        options[1],
-        options[2],
-        options[3],
-    ]);
+    let mut args =
+        vec![scene.to_str().unwrap(), "--parts", "3", "--frames", "0..6", "-o", frames.to_str().unwrap(), "--"];
+    args.extend(options);
+    let jobs = submit(&args, None);
     let logs = frames.join("logs");
     let state = wait_for(&jobs, &logs);
     assert_eq!(state, "COMPLETED", "the assemble job ended {state}:\n{}", logs_of(&logs));
@@ -174,6 +175,65 @@ fn animation_frames_rendered_by_a_job_array_equal_a_local_animation() {
     }
     let first = pixels(&local.join("frame_00000.exr"));
     assert_ne!(first, pixels(&local.join("frame_00003.exr")), "the orbiting camera's frames differ");
+    drop(jobs);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[cfg(unix)]
+#[test]
+#[ignore = "needs a Slurm cluster: run cluster/slurm/local-cluster.sh"]
+fn the_video_is_assembled_after_the_frames_by_ffmpeg() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = temp_dir("video");
+    let scene = orbit_scene(&dir);
+    // A stand-in ffmpeg records how it is called (the real one is covered by tests/cli_animate.rs).
+    let (bin, called) = (dir.join("bin"), dir.join("ffmpeg-args.txt"));
+    std::fs::create_dir_all(&bin).unwrap();
+    let fake = bin.join("ffmpeg");
+    std::fs::write(&fake, format!("#!/bin/sh\necho \"$@\" > '{}'\n", called.display())).unwrap();
+    std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let (frames, video) = (dir.join("frames"), dir.join("orbit.mp4"));
+    let (frames_arg, video_arg) = (frames.to_str().unwrap(), video.to_str().unwrap());
+    let args = [scene.to_str().unwrap(), "--parts", "2", "--frames", "1..=4", "-o", frames_arg, "--video", video_arg];
+    let jobs = submit(&args, Some(&bin));
+    let logs = frames.join("logs");
+    let state = wait_for(&jobs, &logs);
+    assert_eq!(state, "COMPLETED", "the assemble job ended {state}:\n{}", logs_of(&logs));
+    assert_eq!(job_states(&jobs.render), ["COMPLETED"; 2], "{}", logs_of(&logs));
+    assert!((1..=4).all(|n| frames.join(format!("frame_{n:05}.png")).exists()), "{}", logs_of(&logs));
+    let called =
+        std::fs::read_to_string(&called).unwrap_or_else(|e| panic!("ffmpeg was not called ({e}):\n{}", logs_of(&logs)));
+    for expected in ["-framerate 1", "-start_number 1", "frame_%05d.png", "-frames:v 4", video_arg] {
+        assert!(called.contains(expected), "{called:?} lacks {expected:?}");
+    }
+    drop(jobs);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+#[ignore = "needs a Slurm cluster: run cluster/slurm/local-cluster.sh"]
+fn a_failed_task_cancels_the_job_after_it_instead_of_leaving_it_pending() {
+    let dir = temp_dir("failed");
+    let scene = orbit_scene(&dir);
+    let frames = dir.join("frames");
+    let args = [
+        scene.to_str().unwrap(),
+        "--parts",
+        "2",
+        "--frames",
+        "0..2",
+        "-o",
+        frames.to_str().unwrap(),
+        "--",
+        "--spp",
+        "0",
+    ];
+    let jobs = submit(&args, None);
+    let logs = frames.join("logs");
+    let state = wait_for(&jobs, &logs);
+    assert_eq!(state, "CANCELLED", "the assemble job after failed tasks ended {state}:\n{}", logs_of(&logs));
+    assert_eq!(job_states(&jobs.render), ["FAILED"; 2], "{}", logs_of(&logs));
+    assert!(logs_of(&logs).contains("--spp must be at least 1"), "{}", logs_of(&logs));
     drop(jobs);
     std::fs::remove_dir_all(&dir).unwrap();
 }
