@@ -34,7 +34,7 @@ use super::stats::PathStats;
 use crate::color::Rgb;
 use crate::film::Film;
 use crate::propagator::Propagator;
-use crate::renderer::RenderStats;
+use crate::renderer::{Outcome, RenderStats};
 use crate::sampling::{Rng, Sampler};
 use crate::scene::Scene;
 use crate::world::World;
@@ -109,8 +109,10 @@ pub fn render(
         samples: u64::from(done) * pixel_count as u64,
         nan_samples: film.nan_samples() + totals.dropped,
         seconds: start.elapsed().as_secs_f64(),
-        tiles_done: u64::from(done),
-        tiles_total: u64::from(settings.spp),
+        outcome: if done == settings.spp { Outcome::Finished } else { Outcome::Interrupted },
+        spp_min: done,
+        spp_max: done,
+        relative_error: None,
     };
     (film, stats)
 }
