@@ -1,5 +1,6 @@
-//! The Slurm job scripts (cluster/slurm/) run on a real Slurm cluster: the frames of an animation
-//! rendered by a job array equal one local `nullpath animate`.
+//! The Slurm job scripts (cluster/slurm/) run on a real Slurm cluster: a still rendered in parts
+//! by a job array and merged by a dependent job equals one `nullpath render`, and the frames of an
+//! animation rendered by a job array equal one local `nullpath animate`.
 //!
 //! These tests need a running cluster whose nodes see this machine's temporary directory (the
 //! single-node cluster of `cluster/slurm/local-cluster.sh start` does), so they are ignored by a
@@ -143,6 +144,36 @@ fn logs_of(logs: &Path) -> String {
 /// The linear pixels of an image file.
 fn pixels(path: &Path) -> Vec<f32> {
     image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_rgb32f().into_raw()
+}
+
+#[test]
+#[ignore = "needs a Slurm cluster: run cluster/slurm/local-cluster.sh"]
+fn a_still_rendered_in_parts_by_a_job_array_and_merged_equals_one_render() {
+    let dir = temp_dir("still");
+    let scene = orbit_scene(&dir);
+    let scene_arg = scene.to_str().unwrap();
+    let (merged, single) = (dir.join("merged.png"), dir.join("single"));
+    let jobs = submit(&[scene_arg, "--parts", "3", "-o", merged.to_str().unwrap(), "--", "--seed", "9"], None);
+    let work = dir.join("merged.png.parts");
+    let logs = work.join("logs");
+    let state = wait_for(&jobs, &logs);
+    assert_eq!(state, "COMPLETED", "the merge job ended {state}:\n{}", logs_of(&logs));
+    assert_eq!(job_states(&jobs.render), ["COMPLETED"; 3], "{}", logs_of(&logs));
+
+    let render = |ext: &str| {
+        let out = single.with_extension(ext);
+        check(nullpath().args(["render", scene_arg, "-o", out.to_str().unwrap(), "--seed", "9", "--quiet"]));
+        out
+    };
+    let rgb8 = |path: &Path| image::open(path).unwrap().to_rgb8().into_raw();
+    assert_eq!(rgb8(&merged), rgb8(&render("png")), "the merged PNG differs from one render's");
+    // The parts the array wrote hold the exact sums: merged to linear EXR, they equal one render's EXR.
+    let parts: Vec<PathBuf> = (1..=3).map(|i| work.join(format!("part_{i}.exr"))).collect();
+    let exr = dir.join("merged.exr");
+    check(nullpath().arg("merge").args(&parts).args(["-o", exr.to_str().unwrap()]));
+    assert_eq!(pixels(&exr), pixels(&render("exr")), "the merged EXR differs from one render's");
+    drop(jobs);
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
