@@ -31,12 +31,27 @@ fn arg(path: &Path) -> &str {
 
 /// `nullpath render CORNELL SIZE --quiet` plus `args`, run to the end.
 fn render(args: &[&str]) -> Output {
-    nullpath().args(["render", CORNELL]).args(SIZE).arg("--quiet").args(args).output().unwrap()
+    render_scene(CORNELL, args)
+}
+
+/// `nullpath render SCENE SIZE --quiet` plus `args`, run to the end.
+fn render_scene(scene: &str, args: &[&str]) -> Output {
+    nullpath().args(["render", scene]).args(SIZE).arg("--quiet").args(args).output().unwrap()
 }
 
 /// The same, started and left running.
-fn start(args: &[&str]) -> Child {
-    nullpath().args(["render", CORNELL]).args(SIZE).arg("--quiet").args(args).stderr(Stdio::piped()).spawn().unwrap()
+fn start(scene: &str, args: &[&str]) -> Child {
+    nullpath().args(["render", scene]).args(SIZE).arg("--quiet").args(args).stderr(Stdio::piped()).spawn().unwrap()
+}
+
+/// The Cornell box rendered by photon mapping, as a scene file in `dir`.
+fn photon_cornell(dir: &Path) -> String {
+    let text =
+        std::fs::read_to_string(CORNELL).unwrap().replacen("[render]\n", "[render]\nintegrator = \"photon\"\n", 1);
+    assert!(text.contains("integrator = \"photon\""));
+    let path = dir.join("photon-cornell.toml");
+    std::fs::write(&path, text).unwrap();
+    arg(&path).to_owned()
 }
 
 fn signal(child: &Child, name: &str) {
@@ -60,16 +75,19 @@ fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
-/// Interrupts a render of a million samples per pixel with `stop` (a signal name, or a time
-/// limit), resumes it from its checkpoint to a few samples more than it reached, and checks the
-/// image against an uninterrupted render of as many samples.
-fn interrupted_and_resumed(stop: &str) {
-    let dir = temp_dir(stop);
+/// Interrupts a render of a million samples per pixel (or photon-mapping iterations, with
+/// `photon`) with `stop` (a signal name, or a time limit), resumes it from its checkpoint to a
+/// few samples more than it reached, and checks the image against an uninterrupted render of as
+/// many samples.
+fn interrupted_and_resumed(stop: &str, photon: bool) {
+    let dir = temp_dir(&format!("{stop}-{photon}"));
+    let scene = if photon { photon_cornell(&dir) } else { CORNELL.to_owned() };
+    let render = |args: &[&str]| render_scene(&scene, args);
     let (out, checkpoint) = (dir.join("image.exr"), dir.join("image.checkpoint.exr"));
     let stopped = if stop == "time-limit" {
         render(&["-o", arg(&out), "--spp", "1000000", "--time-limit", "2s"])
     } else {
-        let child = start(&["-o", arg(&out), "--spp", "1000000"]);
+        let child = start(&scene, &["-o", arg(&out), "--spp", "1000000"]);
         std::thread::sleep(Duration::from_millis(1500));
         signal(&child, stop);
         child.wait_with_output().unwrap()
@@ -97,17 +115,39 @@ fn interrupted_and_resumed(stop: &str) {
 
 #[test]
 fn a_render_interrupted_by_sigint_resumes_bit_identically() {
-    interrupted_and_resumed("INT");
+    interrupted_and_resumed("INT", false);
 }
 
 #[test]
 fn a_render_interrupted_by_sigterm_resumes_bit_identically() {
-    interrupted_and_resumed("TERM");
+    interrupted_and_resumed("TERM", false);
 }
 
 #[test]
 fn a_render_stopped_at_its_time_limit_resumes_bit_identically() {
-    interrupted_and_resumed("time-limit");
+    interrupted_and_resumed("time-limit", false);
+}
+
+#[test]
+fn a_photon_mapping_render_interrupted_by_sigint_resumes_bit_identically() {
+    interrupted_and_resumed("INT", true);
+}
+
+#[test]
+fn a_photon_mapping_render_stopped_at_its_time_limit_resumes_bit_identically() {
+    interrupted_and_resumed("time-limit", true);
+}
+
+#[test]
+fn photon_mapping_refuses_parts_and_noise_targets_with_reasons() {
+    let dir = temp_dir("photon-refusals");
+    let scene = photon_cornell(&dir);
+    for (flags, reason) in [(["--part", "1/2"], "every photon"), (["--noise-target", "0.05"], "mostly bias")] {
+        let out = render_scene(&scene, &[&["-o", arg(&dir.join("x.png"))], &flags[..]].concat());
+        assert_eq!(out.status.code(), Some(1), "{flags:?}");
+        assert!(stderr(&out).contains(reason), "{flags:?}: {}", stderr(&out));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -199,7 +239,7 @@ fn an_interrupt_is_answered_within_a_second_and_the_previous_image_is_kept() {
     let out = dir.join("image.png");
     assert!(render(&["-o", arg(&out), "--spp", "2"]).status.success());
     let finished = std::fs::read(&out).unwrap();
-    let child = start(&["-o", arg(&out), "--spp", "1000000"]);
+    let child = start(CORNELL, &["-o", arg(&out), "--spp", "1000000"]);
     std::thread::sleep(Duration::from_millis(1500));
     let asked = Instant::now();
     signal(&child, "INT");
@@ -209,6 +249,31 @@ fn an_interrupt_is_answered_within_a_second_and_the_previous_image_is_kept() {
     assert!(answered < Duration::from_secs(1), "answered after {answered:?}");
     assert_eq!(std::fs::read(&out).unwrap(), finished, "the finished image was replaced");
     assert!(dir.join("image.checkpoint.exr").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_second_interrupt_quits_at_once() {
+    let dir = temp_dir("second-interrupt");
+    let out = dir.join("image.png");
+    // A large image, whose checkpoint takes a few seconds to write after the first Ctrl-C.
+    let child = nullpath()
+        .args(["render", CORNELL, "--width", "3000", "--height", "2000", "--spp", "1000000", "--quiet"])
+        .args(["-o", arg(&out)])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    signal(&child, "INT");
+    std::thread::sleep(Duration::from_millis(100));
+    let asked = Instant::now();
+    signal(&child, "INT");
+    let result = child.wait_with_output().unwrap();
+    let answered = asked.elapsed();
+    assert_eq!(result.status.code(), Some(130), "{}", stderr(&result));
+    assert!(!stderr(&result).contains("--resume"), "the first interrupt's answer finished: {}", stderr(&result));
+    assert!(answered < Duration::from_secs(1), "answered after {answered:?}");
+    assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -6,8 +6,10 @@ use super::provenance::{self, Source};
 use super::Failure;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
-use render::film::{check_output_path, check_writable, read_checkpoint, write_checkpoint, write_image, Film};
-use render::film::{ImageFormat, Metadata};
+use progressive::{PathRender, Progressive};
+use render::film::{check_output_path, check_writable, read_checkpoint, Film, ImageFormat, Metadata};
+use render::integrator::photon::{PhotonRenderer, SppmResume, SppmState};
+use render::integrator::PathStats;
 use render::renderer::{render, Goal, NoiseTarget, Outcome, Part, RenderStats, Renderer, Resume};
 use render::scene::Scene;
 use render::settings::IntegratorKind;
@@ -16,6 +18,8 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::sync::{Condvar, Mutex};
 use std::time::{Duration, Instant};
+
+mod progressive;
 
 /// The scene rendered when none is named.
 pub const DEFAULT_SCENE: &str = include_str!("../../scenes/room-black-hole.toml");
@@ -27,9 +31,9 @@ const MAX_SIDE: u32 = 16384;
 const MAX_SPP: u32 = 1 << 20;
 /// Most worker threads.
 const MAX_THREADS: usize = 1024;
-/// Memory a checkpoint's encoding needs, beyond the film, per pixel: its `u32` and `f32`
-/// channels (see `render::film::write_checkpoint`).
-const CHECKPOINT_BYTES_PER_PIXEL: u64 = 4 * (3 + 2 * 6 + 3);
+/// Memory a checkpoint needs, beyond the film, per pixel: the copy of the film it is written
+/// from, and its encoding's `u32` and `f32` channels (see `render::film::write_checkpoint`).
+const CHECKPOINT_BYTES_PER_PIXEL: u64 = Film::BYTES_PER_PIXEL + 4 * (3 + 2 * 6 + 3);
 
 #[derive(Parser, Debug)]
 #[command(after_help = "Flags override the scene file's values. Scenes: see docs/scene-format.md.\n\
@@ -70,7 +74,8 @@ pub struct Args {
     time_limit: Option<Duration>,
     /// Stop when the estimated relative error of the image (per pixel, from the variance of
     /// its samples) is at most this, e.g. 0.02; --spp (default 65536) is then the most a pixel
-    /// takes.
+    /// takes. Renders in passes that double the samples; the progress bar shows the pass in
+    /// progress. Path tracing only.
     #[arg(long, value_name = "ERROR")]
     noise_target: Option<f64>,
     /// With --noise-target: send samples only to the pixels that still need them.
@@ -377,8 +382,9 @@ pub fn run(args: &Args) -> Result<(), Failure> {
     let source = args.options.source(args.scene.as_deref(), args.time);
     let part = args.part.unwrap_or(Part::WHOLE);
     let goal = args.goal(&scene)?;
-    if scene.settings.integrator == IntegratorKind::Photon {
-        return run_photon(args, &scene);
+    let photon = scene.settings.integrator == IntegratorKind::Photon;
+    if photon {
+        refuse_for_photon_mapping(args)?;
     }
     if part != Part::WHOLE && goal.noise.is_some() {
         return Err("--noise-target decides from the whole image, so it cannot be used with --part".to_owned().into());
@@ -390,116 +396,182 @@ pub fn run(args: &Args) -> Result<(), Failure> {
     }
     let pool = args.options.thread_pool()?;
     args.options.check_memory(&scene, true)?;
-    let resume = args.resume.as_deref().map(|path| resume_from(path, &scene, &source, goal, part)).transpose()?;
     let interrupts = Interrupts::install()?;
-    let renderer = Renderer::new(&scene, part, resume).map_err(|e| e.to_string())?;
-
-    let metadata = |stats: &RenderStats| provenance::metadata(&scene, &source, goal, part, stats);
-    let checkpoint = args.checkpoint_path();
-    let save = |film: &Film, targets: &[u32], stats: &RenderStats| {
-        write_checkpoint(&checkpoint, film, targets, &metadata(stats)).map_err(|e| format!("checkpoint: {e}"))
-    };
-    let stats = run_with_checkpoints(args, &renderer, &pool, goal, &interrupts, &save);
-    let (film, targets, _) = renderer.into_state();
-
-    if let Some(reason) = interrupts.reason().filter(|_| !stats.is_complete()) {
-        return interrupted(args, &scene, &stats, reason, save(&film, &targets, &stats));
-    }
-    if args.part.is_none() {
-        write_image(&film, &args.output, &scene.settings.tonemap, &metadata(&stats)).map_err(|e| e.to_string())?;
+    let command = Command { args, scene: &scene, source: &source, goal, part, pool: &pool, interrupts: &interrupts };
+    if photon {
+        let resume = args.resume.as_deref().map(|path| command.photon_resume(path)).transpose()?;
+        command.drive(&PhotonRenderer::new(&scene, resume))
     } else {
-        write_checkpoint(&args.output, &film, &targets, &metadata(&stats)).map_err(|e| e.to_string())?;
+        let resume = args.resume.as_deref().map(|path| command.resume(path)).transpose()?;
+        let renderer = Renderer::new(&scene, part, resume).map_err(|e| e.to_string())?;
+        command.drive(&PathRender { renderer, goal })
     }
-    if args.checkpoint.is_some() {
-        save(&film, &targets, &stats)?;
-    } else if args.resume.as_deref() == Some(checkpoint.as_path()) {
-        // The work is in the image now; the checkpoint an interruption left is done with.
-        let _ = std::fs::remove_file(&checkpoint);
+}
+
+/// Photon mapping's iterations share every photon between all pixels, so a part of the image
+/// would not be the whole render's part; and its estimate is consistent, not unbiased, so the
+/// spread of its iterations does not measure its error.
+fn refuse_for_photon_mapping(args: &Args) -> Result<(), String> {
+    if args.part.is_some() {
+        return Err("--part is not available with integrator = \"photon\": every photon of an iteration \
+                    lands in any pixel, so a part cannot be rendered on its own; split the frames of an \
+                    animation instead (nullpath animate --frames)"
+            .into());
     }
-    if let Some(path) = &args.stats {
-        write_stats(path, &stats, &scene)?;
-    }
-    if !args.options.quiet {
-        eprintln!("wrote {}", summary(&stats, &scene));
-        eprintln!("{}: {}", if args.part.is_none() { "image" } else { "part" }, args.output.display());
+    if args.noise_target.is_some() {
+        return Err("--noise-target is not available with integrator = \"photon\": photon mapping's error is \
+                    mostly bias that shrinks with the iterations, which the spread of its iterations does not \
+                    measure; set the number of iterations (--spp) instead"
+            .into());
     }
     Ok(())
 }
 
-/// The checkpoint at `path`, if the render described by `scene`, `source`, `goal` and `part`
-/// continues it.
-fn resume_from(path: &Path, scene: &Scene, source: &Source, goal: Goal, part: Part) -> Result<Resume, String> {
-    let checkpoint = read_checkpoint(path).map_err(|e| format!("--resume: {e}"))?;
-    let refuse = |why: String| format!("--resume {}: cannot continue this render: {why}", path.display());
-    let now = provenance::metadata(scene, source, goal, part, &RenderStats::default());
-    provenance::check_resumable(&checkpoint.metadata, &now).map_err(refuse)?;
-    let (width, height) = (checkpoint.film.width(), checkpoint.film.height());
-    if (width, height) != (scene.settings.width, scene.settings.height) {
-        return Err(refuse(format!("it is {width}x{height}")));
-    }
-    let reached = checkpoint.film.bounds().pixels().map(|(x, y)| checkpoint.film.taken_at(x, y)).max().unwrap_or(0);
-    if reached > goal.spp {
-        return Err(refuse(format!(
-            "it already has {reached} samples per pixel, more than the {} asked for",
-            goal.spp
-        )));
-    }
-    let (paths, seconds) = provenance::recorded_work(&checkpoint.metadata);
-    Ok(Resume { film: checkpoint.film, targets: checkpoint.targets, paths, seconds })
+/// One `nullpath render` command with its scene, validated.
+struct Command<'a> {
+    args: &'a Args,
+    scene: &'a Scene,
+    source: &'a Source,
+    goal: Goal,
+    part: Part,
+    pool: &'a rayon::ThreadPool,
+    interrupts: &'a Interrupts,
 }
 
-/// Writes a checkpoint of a film, its pass targets and what the render did so far.
-type SaveCheckpoint<'a> = dyn Fn(&Film, &[u32], &RenderStats) -> Result<(), String> + Sync + 'a;
+impl Command<'_> {
+    fn metadata(&self, stats: &RenderStats) -> Metadata {
+        provenance::metadata(self.scene, self.source, self.goal, self.part, stats)
+    }
 
-/// Runs `renderer` to `goal` on `pool`, writing checkpoints every `--checkpoint-every` from a
-/// second thread and stopping it at `--time-limit`.
-fn run_with_checkpoints(
-    args: &Args,
-    renderer: &Renderer<'_>,
-    pool: &rayon::ThreadPool,
-    goal: Goal,
-    interrupts: &Interrupts,
-    save: &SaveCheckpoint<'_>,
-) -> RenderStats {
-    let every = args.checkpoint_every.or(args.checkpoint.as_ref().map(|_| Duration::from_secs(300)));
-    let start = Instant::now();
-    let deadline = args.time_limit.map(|limit| start + limit);
-    let finished = (Mutex::new(false), Condvar::new());
-    let bar = args.options.progress_bar();
-    std::thread::scope(|scope| {
-        scope.spawn(|| {
-            let mut next_checkpoint = every.map(|e| start + e);
-            let (lock, wake) = &finished;
-            let mut done = lock.lock().unwrap_or_else(|e| e.into_inner());
-            while !*done {
-                let now = Instant::now();
-                if deadline.is_some_and(|d| now >= d) {
-                    interrupts.stop_for_time_limit();
-                }
-                if let (Some(at), Some(every)) = (next_checkpoint, every) {
-                    if now >= at {
-                        let (film, targets, stats) = renderer.snapshot();
-                        if let Err(e) = save(&film, &targets, &stats) {
-                            eprintln!("nullpath: warning: {e}");
-                        }
-                        next_checkpoint = Some(Instant::now() + every);
-                    }
-                }
-                let wait =
-                    [next_checkpoint, deadline].into_iter().flatten().min().map_or(Duration::from_secs(3600), |t| {
-                        t.saturating_duration_since(Instant::now()).max(Duration::from_millis(1))
-                    });
-                done = wake.wait_timeout(done, wait).map(|(d, _)| d).unwrap_or_else(|e| e.into_inner().0);
-            }
-        });
-        let stats = pool.install(|| renderer.run(goal, &interrupts.cancel, &|done, total| show(&bar, done, total)));
-        if let Some(bar) = &bar {
-            bar.finish_and_clear();
+    /// Runs `render` to its end or an interruption and writes what it made.
+    fn drive(&self, render: &dyn Progressive) -> Result<(), Failure> {
+        let args = self.args;
+        let checkpoint = args.checkpoint_path();
+        let metadata = |stats: &RenderStats| self.metadata(stats);
+        let save = || render.checkpoint(&checkpoint, &metadata);
+        let stats = self.run_with_checkpoints(render, &save);
+        if let Some(reason) = self.interrupts.reason().filter(|_| !stats.is_complete()) {
+            return interrupted(
+                args,
+                self.scene,
+                &stats,
+                reason,
+                render.checkpoint(&checkpoint, &|_| metadata(&stats)),
+            );
         }
-        *finished.0.lock().unwrap_or_else(|e| e.into_inner()) = true;
-        finished.1.notify_all();
-        stats
-    })
+        if args.part.is_none() {
+            render.write_image(&args.output, &self.scene.settings.tonemap, &metadata(&stats))?;
+        } else {
+            render.checkpoint(&args.output, &|_| metadata(&stats))?;
+        }
+        if args.checkpoint.is_some() {
+            render.checkpoint(&checkpoint, &|_| metadata(&stats))?;
+        } else if args.resume.as_deref() == Some(checkpoint.as_path()) {
+            // The work is in the image now; the checkpoint an interruption left is done with.
+            let _ = std::fs::remove_file(&checkpoint);
+        }
+        if let Some(path) = &args.stats {
+            write_stats(path, &stats, self.scene)?;
+        }
+        if !args.options.quiet {
+            eprintln!("wrote {}", summary(&stats, self.scene));
+            eprintln!("{}: {}", if args.part.is_none() { "image" } else { "part" }, args.output.display());
+        }
+        Ok(())
+    }
+
+    /// Runs `render` on the pool, calling `save` every `--checkpoint-every` from a second thread
+    /// and stopping the render at `--time-limit`.
+    fn run_with_checkpoints(
+        &self,
+        render: &dyn Progressive,
+        save: &(dyn Fn() -> Result<(), String> + Sync),
+    ) -> RenderStats {
+        let args = self.args;
+        let every = args.checkpoint_every.or(args.checkpoint.as_ref().map(|_| Duration::from_secs(300)));
+        let start = Instant::now();
+        let deadline = args.time_limit.map(|limit| start + limit);
+        let finished = (Mutex::new(false), Condvar::new());
+        let bar = args.options.progress_bar();
+        std::thread::scope(|scope| {
+            scope.spawn(|| {
+                let mut next_checkpoint = every.map(|e| start + e);
+                let (lock, wake) = &finished;
+                let mut done = lock.lock().unwrap_or_else(|e| e.into_inner());
+                while !*done {
+                    let now = Instant::now();
+                    if deadline.is_some_and(|d| now >= d) {
+                        self.interrupts.stop_for_time_limit();
+                    }
+                    if let (Some(at), Some(every)) = (next_checkpoint, every) {
+                        if now >= at {
+                            if let Err(e) = save() {
+                                eprintln!("nullpath: warning: {e}");
+                            }
+                            next_checkpoint = Some(Instant::now() + every);
+                        }
+                    }
+                    let wait = [next_checkpoint, deadline]
+                        .into_iter()
+                        .flatten()
+                        .min()
+                        .map_or(Duration::from_secs(3600), |t| {
+                            t.saturating_duration_since(Instant::now()).max(Duration::from_millis(1))
+                        });
+                    done = wake.wait_timeout(done, wait).map(|(d, _)| d).unwrap_or_else(|e| e.into_inner().0);
+                }
+            });
+            let progress = |done, total| show(&bar, done, total);
+            let stats = self.pool.install(|| render.run(&self.interrupts.cancel, &progress));
+            if let Some(bar) = &bar {
+                bar.finish_and_clear();
+            }
+            *finished.0.lock().unwrap_or_else(|e| e.into_inner()) = true;
+            finished.1.notify_all();
+            stats
+        })
+    }
+
+    /// The path tracer's checkpoint at `path`, if this render continues it.
+    fn resume(&self, path: &Path) -> Result<Resume, String> {
+        let checkpoint = read_checkpoint(path).map_err(|e| format!("--resume: {e}"))?;
+        let film = &checkpoint.film;
+        let reached = film.bounds().pixels().map(|(x, y)| film.taken_at(x, y)).max().unwrap_or(0);
+        let (paths, seconds) =
+            self.check_continues(path, &checkpoint.metadata, (film.width(), film.height()), reached)?;
+        Ok(Resume { film: checkpoint.film, targets: checkpoint.targets, paths, seconds })
+    }
+
+    /// Photon mapping's checkpoint at `path`, if this render continues it.
+    fn photon_resume(&self, path: &Path) -> Result<SppmResume, String> {
+        let (state, metadata) = SppmState::read(path).map_err(|e| format!("--resume: {e}"))?;
+        let size = (state.width(), state.height());
+        let (paths, seconds) = self.check_continues(path, &metadata, size, state.iterations())?;
+        Ok(SppmResume { state, paths, seconds })
+    }
+
+    /// Whether the checkpoint at `path` with `metadata`, of `size` and `reached` samples (or
+    /// iterations) per pixel, can be continued by this render; the work it records if so.
+    fn check_continues(
+        &self,
+        path: &Path,
+        metadata: &Metadata,
+        (width, height): (u32, u32),
+        reached: u32,
+    ) -> Result<(PathStats, f64), String> {
+        let refuse = |why: String| format!("--resume {}: cannot continue this render: {why}", path.display());
+        provenance::check_resumable(metadata, &self.metadata(&RenderStats::default())).map_err(refuse)?;
+        if (width, height) != (self.scene.settings.width, self.scene.settings.height) {
+            return Err(refuse(format!("it is {width}x{height}")));
+        }
+        if reached > self.goal.spp {
+            return Err(refuse(format!(
+                "it already has {reached} samples per pixel, more than the {} asked for",
+                self.goal.spp
+            )));
+        }
+        Ok(provenance::recorded_work(metadata))
+    }
 }
 
 /// Reports an interrupted render whose checkpoint was (or failed to be) saved.
@@ -522,61 +594,15 @@ fn interrupted(
     };
     Err(Failure {
         message: format!(
-            "{reason} at {spp} samples per pixel; the work is in {} ({} was not touched). \
+            "{reason} at {spp} {}; the work is in {} ({} was not touched). \
              Continue with the same command and --resume {}",
+            if scene.settings.integrator == IntegratorKind::Photon { "iterations" } else { "samples per pixel" },
             checkpoint.display(),
             args.output.display(),
             checkpoint.display()
         ),
         code: reason.exit_code(),
     })
-}
-
-/// Photon mapping renders by iterations of its own, without checkpoints or parts (yet).
-fn run_photon(args: &Args, scene: &Scene) -> Result<(), Failure> {
-    let refused = [
-        (args.checkpoint.is_some(), "--checkpoint"),
-        (args.resume.is_some(), "--resume"),
-        (args.part.is_some(), "--part"),
-        (args.noise_target.is_some(), "--noise-target"),
-        (args.time_limit.is_some(), "--time-limit"),
-    ];
-    if let Some((_, flag)) = refused.iter().find(|(given, _)| *given) {
-        return Err(format!("{flag} is not available with integrator = \"photon\" yet").into());
-    }
-    check_path(&args.output, "output", false)?;
-    if let Some(path) = &args.stats {
-        check_stats_path(path)?;
-    }
-    let pool = args.options.thread_pool()?;
-    args.options.check_memory(scene, false)?;
-    let interrupts = Interrupts::install()?;
-    let (film, stats) = args.options.render(scene, &pool, &interrupts.cancel);
-    let source = args.options.source(args.scene.as_deref(), args.time);
-    let metadata: Metadata = provenance::metadata(scene, &source, Goal::spp(scene.settings.spp), Part::WHOLE, &stats);
-    // A partial result never replaces a complete one: it goes beside the output.
-    let output = if stats.is_complete() { args.output.clone() } else { args.output.with_extension("partial.exr") };
-    write_image(&film, &output, &scene.settings.tonemap, &metadata).map_err(|e| e.to_string())?;
-    if let Some(path) = &args.stats {
-        write_stats(path, &stats, scene)?;
-    }
-    if let Some(reason) = interrupts.reason().filter(|_| !stats.is_complete()) {
-        return Err(Failure {
-            message: format!(
-                "{reason} after {} of {} iterations; the image so far is in {} ({} was not touched)",
-                stats.spp_max,
-                scene.settings.spp,
-                output.display(),
-                args.output.display()
-            ),
-            code: reason.exit_code(),
-        });
-    }
-    if !args.options.quiet {
-        eprintln!("wrote {}", summary(&stats, scene));
-        eprintln!("image: {}", output.display());
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -52,7 +52,10 @@ mod pixel;
 mod tile;
 mod tonemap;
 
-pub use checkpoint::{read_checkpoint, write_checkpoint, Checkpoint, CheckpointError};
+pub use checkpoint::{
+    read_checkpoint, read_state, write_checkpoint, write_state, Checkpoint, CheckpointError, PixelChannels, StateFile,
+    STATE_PREFIX,
+};
 pub use filter::{
     BlackmanHarrisFilter, BoxFilter, Filter, FilterError, FilterSample, GaussianFilter, MitchellFilter, TentFilter,
     MAX_FILTER_RADIUS, MITCHELL_RECOMMENDED_B_C,

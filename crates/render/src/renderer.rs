@@ -167,7 +167,9 @@ pub fn propagator(scene: &Scene) -> Propagator {
 /// it within a sample; `progress` is told `(samples done, samples total)` as passes go.
 pub fn render(scene: &Scene, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> (Film, RenderStats) {
     if scene.settings.integrator == IntegratorKind::Photon {
-        return photon::render(scene, &propagator(scene), cancel, progress);
+        let renderer = photon::PhotonRenderer::new(scene, None);
+        let stats = renderer.run(cancel, progress);
+        return (renderer.film(&renderer.snapshot().0), stats);
     }
     let renderer = Renderer::new(scene, Part::WHOLE, None).unwrap_or_else(|e| panic!("{e}"));
     let stats = renderer.run(Goal::spp(scene.settings.spp), cancel, progress);
@@ -182,7 +184,7 @@ struct State {
 }
 
 /// A progressive path-tracing render of a scene (or of a part of it): see the module docs. The
-/// photon integrator renders by iterations of its own, see [`photon::render`].
+/// photon integrator renders by iterations of its own, see [`photon::PhotonRenderer`].
 pub struct Renderer<'s> {
     scene: &'s Scene,
     propagator: Propagator,
@@ -211,7 +213,11 @@ impl<'s> Renderer<'s> {
     /// # Panics
     /// If the scene asks for the photon integrator, or `resume` does not fit the scene.
     pub fn new(scene: &'s Scene, part: Part, resume: Option<Resume>) -> Result<Self, FilmTooLarge> {
-        assert_ne!(scene.settings.integrator, IntegratorKind::Photon, "photon mapping renders by photon::render");
+        assert_ne!(
+            scene.settings.integrator,
+            IntegratorKind::Photon,
+            "photon mapping renders by photon::PhotonRenderer"
+        );
         let (width, height) = (scene.settings.width, scene.settings.height);
         let (film, targets, paths, earlier_seconds) = match resume {
             Some(r) => {
@@ -236,7 +242,8 @@ impl<'s> Renderer<'s> {
     }
 
     /// Renders on the current rayon pool until `goal` is reached or `cancel` is set (answered
-    /// within a sample); `progress` is told `(samples done, samples total)` of this part.
+    /// within a sample); `progress` is told `(samples done, samples total)` of this part, the
+    /// total being that of the pass in progress (with a noise target, later passes may add more).
     pub fn run(&self, goal: Goal, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> RenderStats {
         let start = *self.started.get_or_init(Instant::now);
         let settings = &self.scene.settings;
@@ -291,8 +298,8 @@ impl<'s> Renderer<'s> {
         cancel: &AtomicBool,
         progress: &(dyn Fn(u64, u64) + Sync),
     ) -> bool {
-        let total = self.tiles.iter().map(|t| t.pixel_count() as u64).sum::<u64>() * u64::from(goal.spp);
-        let done = AtomicU64::new(self.taken_total());
+        let (taken, total) = self.taken_and_target(goal.spp);
+        let done = AtomicU64::new(taken);
         let mut chunk = 1u32;
         loop {
             let round = Instant::now();
@@ -315,9 +322,16 @@ impl<'s> Renderer<'s> {
         }
     }
 
-    fn taken_total(&self) -> u64 {
+    /// The samples the part's pixels have taken, and the samples they will have after this
+    /// pass (to their targets, at most `spp`).
+    fn taken_and_target(&self, spp: u32) -> (u64, u64) {
         let state = self.lock();
-        self.tiles.iter().flat_map(|t| t.pixels()).map(|(x, y)| u64::from(state.film.taken_at(x, y))).sum()
+        let width = state.film.width() as usize;
+        self.tiles.iter().flat_map(|t| t.pixels()).fold((0, 0), |(taken, total), (x, y)| {
+            let done = u64::from(state.film.taken_at(x, y));
+            let target = state.targets[y as usize * width + x as usize].min(spp);
+            (taken + done, total + done.max(u64::from(target)))
+        })
     }
 
     /// Takes each pixel of one tile at most `chunk` samples closer to its target (at most `spp`:

@@ -421,9 +421,10 @@ impl<'a> Table<'a> {
 }
 
 /// A number for messages: as written for ordinary magnitudes, in exponent notation for huge or
-/// tiny ones (so that `1e300` does not print as 301 digits).
-pub(crate) fn num(x: f64) -> String {
-    let a = x.abs();
+/// tiny ones (so that `1e300` does not print as 301 digits). An `f32` prints in its own
+/// shortest form (`1.1`, not the `1.100000023841858` of its widening to `f64`).
+pub(crate) fn num<T: Copy + Into<f64> + std::fmt::Display + std::fmt::LowerExp>(x: T) -> String {
+    let a = x.into().abs();
     if a != 0.0 && a.is_finite() && !(1e-5..1e15).contains(&a) {
         format!("{x:e}")
     } else {
@@ -437,7 +438,7 @@ pub(crate) fn fmt_vec(v: Vec3) -> String {
 }
 
 pub(crate) fn fmt_rgb(c: Rgb) -> String {
-    format!("[{}, {}, {}]", num(c.x.into()), num(c.y.into()), num(c.z.into()))
+    format!("[{}, {}, {}]", num(c.x), num(c.y), num(c.z))
 }
 
 /// "1 element", "3 elements".
@@ -446,5 +447,18 @@ pub(crate) fn count(n: usize, noun: &str) -> String {
         format!("1 {noun}")
     } else {
         format!("{n} {noun}s")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_print_as_written() {
+        assert_eq!(fmt_rgb(Rgb::new(1.1, 0.3, 0.0)), "[1.1, 0.3, 0]");
+        assert_eq!(num(1e300), "1e300");
+        assert_eq!(num(2.5e-7_f32), "2.5e-7");
+        assert_eq!(fmt_vec(Vec3::new(0.1, -4.0, 1e20)), "[0.1, -4, 1e20]");
     }
 }

@@ -1,14 +1,16 @@
-//! Checkpoints: a film's exact state in an OpenEXR file, to continue a render later, on this
+//! Checkpoints: a render's exact state in an OpenEXR file, to continue it later, on this
 //! machine or another.
 //!
 //! The file is an ordinary linear EXR whose `R`, `G`, `B` channels hold the image as it stands
-//! (any EXR viewer shows it), plus the exact accumulators of every pixel: each `f64` sum as two
-//! `u32` channels of its bits (`nullpath.<sum>.hi` and `.lo`; EXR has no 64-bit samples), the
-//! sample counts `nullpath.count` and `nullpath.taken`, and the per-pixel sample target of the
-//! pass in progress, `nullpath.target`. The header holds the caller's [`Metadata`], the film's
-//! rejected-sample count and a hash of the state, so that a damaged file is refused rather than
-//! continued. Files are written atomically (temporary sibling, then rename), so an interrupted
-//! write leaves the previous checkpoint intact.
+//! (any EXR viewer shows it), plus the exact state of every pixel as named channels
+//! ([`PixelChannels`]): each `f64` as two `u32` channels of its bits (`nullpath.<name>.hi` and
+//! `.lo`; EXR has no 64-bit samples) and counters as `u32` channels. The path tracer's state
+//! ([`write_checkpoint`]) is a film's sums and counts with the per-pixel sample target of the
+//! pass in progress, `nullpath.target`; other integrators keep their own channels with
+//! [`write_state`]. The header holds the caller's [`Metadata`] and a hash of the state, so
+//! that a damaged file is refused rather than continued. Files are written atomically
+//! (temporary sibling, then rename), so an interrupted write leaves the previous checkpoint
+//! intact.
 
 use super::output::{exr_attributes, from_exr_attributes, write_atomically, Metadata, METADATA_PREFIX};
 use super::pixel::{PixelState, PixelSum};
@@ -17,12 +19,13 @@ use std::fmt;
 use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
 
-/// Names of the `f64` accumulators, in [`PixelState`] order.
+/// Names of the film's `f64` accumulators, in [`PixelState`] order.
 const SUMS: [&str; 6] = ["r", "g", "b", "weight", "odd_y", "odd_weight"];
-/// Names of the `u32` counters, in [`PixelState`] order.
+/// Names of the film's `u32` counters, in [`PixelState`] order.
 const COUNTS: [&str; 2] = ["count", "taken"];
 const TARGET: &str = "target";
-/// Header keys the checkpoint itself owns (beside the caller's metadata).
+/// Header keys that start with this belong to the state and are hashed with it.
+pub const STATE_PREFIX: &str = "checkpoint.";
 const NAN_SAMPLES: &str = "checkpoint.nan_samples";
 const STATE_HASH: &str = "checkpoint.state_hash";
 
@@ -32,6 +35,36 @@ pub struct Checkpoint {
     pub film: Film,
     /// Each pixel's sample target in the pass in progress, row-major.
     pub targets: Vec<u32>,
+    pub metadata: Metadata,
+}
+
+/// A render's exact per-pixel state: named channels of one value a pixel, row-major.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PixelChannels {
+    pub f64s: Vec<(&'static str, Vec<f64>)>,
+    pub u32s: Vec<(&'static str, Vec<u32>)>,
+}
+
+impl PixelChannels {
+    /// The channel `name` of `f64`s, if it is there.
+    pub fn f64s(&self, name: &str) -> Option<&[f64]> {
+        self.f64s.iter().find(|(n, _)| *n == name).map(|(_, v)| v.as_slice())
+    }
+
+    /// The channel `name` of `u32`s, if it is there.
+    pub fn u32s(&self, name: &str) -> Option<&[u32]> {
+        self.u32s.iter().find(|(n, _)| *n == name).map(|(_, v)| v.as_slice())
+    }
+}
+
+/// A state read back by [`read_state`].
+#[derive(Clone, Debug)]
+pub struct StateFile {
+    pub width: u32,
+    pub height: u32,
+    pub channels: PixelChannels,
+    /// The header: the state's own entries (keys starting with [`STATE_PREFIX`]) and the
+    /// caller's metadata.
     pub metadata: Metadata,
 }
 
@@ -54,52 +87,56 @@ fn channel_name(name: &str) -> String {
     format!("{METADATA_PREFIX}{name}")
 }
 
-/// Hash of the exact state (bits of every accumulator and counter, and the targets).
-fn state_hash(film: &Film, targets: &[u32]) -> u64 {
+/// Hash of the exact state: the size, every channel's name and bits, and the header's state
+/// entries.
+fn state_hash(size: (u32, u32), channels: &PixelChannels, header: &Metadata) -> u64 {
     let mut hasher = std::hash::DefaultHasher::new();
-    (film.width, film.height, film.nan_samples).hash(&mut hasher);
-    for p in &film.pixels {
-        let (sums, counts) = p.state();
-        sums.map(f64::to_bits).hash(&mut hasher);
-        counts.hash(&mut hasher);
+    size.hash(&mut hasher);
+    for (name, values) in &channels.f64s {
+        name.hash(&mut hasher);
+        values.iter().map(|v| v.to_bits()).for_each(|b| b.hash(&mut hasher));
     }
-    targets.hash(&mut hasher);
+    channels.u32s.hash(&mut hasher);
+    header.iter().filter(|(k, _)| k.starts_with(STATE_PREFIX)).for_each(|entry| entry.hash(&mut hasher));
     hasher.finish()
 }
 
-/// Writes `film` with `targets` (one per pixel) and `metadata` to `path`, atomically.
+/// Writes `channels` with `preview` as the visible image and `header` (metadata and state
+/// entries) to `path`, atomically.
 ///
 /// # Panics
-/// If `targets` does not have one entry per pixel.
-pub fn write_checkpoint(path: &Path, film: &Film, targets: &[u32], metadata: &Metadata) -> Result<(), ImageWriteError> {
+/// If a channel does not have one value per pixel of `preview`.
+pub fn write_state(
+    path: &Path,
+    preview: &Film,
+    channels: &PixelChannels,
+    header: &Metadata,
+) -> Result<(), ImageWriteError> {
     use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, WritableImage};
-    assert_eq!(targets.len(), film.pixels.len(), "one target per pixel");
-    let states: Vec<PixelState> = film.pixels.iter().map(PixelSum::state).collect();
-    let mut channels = Vec::with_capacity(3 + 2 * SUMS.len() + COUNTS.len() + 1);
+    let pixels = preview.pixels.len();
+    let mut list = Vec::with_capacity(3 + 2 * channels.f64s.len() + channels.u32s.len());
     for (k, name) in ["R", "G", "B"].into_iter().enumerate() {
-        let values = film.pixels.iter().map(|p| p.value()[k] as f32).collect();
-        channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
+        let values = preview.pixels.iter().map(|p| p.value()[k] as f32).collect();
+        list.push(AnyChannel::new(name, FlatSamples::F32(values)));
     }
-    for (k, name) in SUMS.into_iter().enumerate() {
-        let bits = || states.iter().map(move |(sums, _)| sums[k].to_bits());
-        let hi = bits().map(|b| (b >> 32) as u32).collect();
-        let lo = bits().map(|b| b as u32).collect();
-        channels.push(AnyChannel::new(channel_name(&format!("{name}.hi")).as_str(), FlatSamples::U32(hi)));
-        channels.push(AnyChannel::new(channel_name(&format!("{name}.lo")).as_str(), FlatSamples::U32(lo)));
+    for (name, values) in &channels.f64s {
+        assert_eq!(values.len(), pixels, "channel {name}: one value per pixel");
+        let hi = values.iter().map(|v| (v.to_bits() >> 32) as u32).collect();
+        let lo = values.iter().map(|v| v.to_bits() as u32).collect();
+        list.push(AnyChannel::new(channel_name(&format!("{name}.hi")).as_str(), FlatSamples::U32(hi)));
+        list.push(AnyChannel::new(channel_name(&format!("{name}.lo")).as_str(), FlatSamples::U32(lo)));
     }
-    for (k, name) in COUNTS.into_iter().enumerate() {
-        let values = states.iter().map(|(_, counts)| counts[k]).collect();
-        channels.push(AnyChannel::new(channel_name(name).as_str(), FlatSamples::U32(values)));
+    for (name, values) in &channels.u32s {
+        assert_eq!(values.len(), pixels, "channel {name}: one value per pixel");
+        list.push(AnyChannel::new(channel_name(name).as_str(), FlatSamples::U32(values.clone())));
     }
-    channels.push(AnyChannel::new(channel_name(TARGET).as_str(), FlatSamples::U32(targets.to_vec())));
-
-    let mut header = metadata.clone();
-    header.insert(NAN_SAMPLES.into(), film.nan_samples.to_string());
-    header.insert(STATE_HASH.into(), format!("{:016x}", state_hash(film, targets)));
+    let size = (preview.width, preview.height);
+    let mut header = header.clone();
+    header.insert(STATE_HASH.into(), format!("{:016x}", state_hash(size, channels, &header)));
     let mut attributes = LayerAttributes::default();
     attributes.other.extend(exr_attributes(&header));
-    let size = (film.width as usize, film.height as usize);
-    let layer = Layer::new(size, attributes, Encoding::FAST_LOSSLESS, AnyChannels::sort(channels.into()));
+    let size = (size.0 as usize, size.1 as usize);
+    let layer = Layer::new(size, attributes, Encoding::FAST_LOSSLESS, AnyChannels::sort(list.into()));
     write_atomically(path, |temporary| {
         Image::from_layer(layer).write().to_file(temporary).map_err(|e| ImageWriteError::Encode {
             path: temporary.to_owned(),
@@ -109,9 +146,9 @@ pub fn write_checkpoint(path: &Path, film: &Film, targets: &[u32], metadata: &Me
     })
 }
 
-/// Reads a checkpoint written by [`write_checkpoint`], refusing files that are damaged or were
-/// not written by it. The file is only read.
-pub fn read_checkpoint(path: &Path) -> Result<Checkpoint, CheckpointError> {
+/// Reads the channels named `f64s` and `u32s` of a state written by [`write_state`], refusing
+/// files that are damaged or lack one of them. The file is only read.
+pub fn read_state(path: &Path, f64s: &[&'static str], u32s: &[&'static str]) -> Result<StateFile, CheckpointError> {
     use exr::prelude::{read, FlatSamples, ReadChannels as _, ReadLayers as _};
     let error = |reason: String| CheckpointError { path: path.to_owned(), reason };
     let image = read()
@@ -123,8 +160,7 @@ pub fn read_checkpoint(path: &Path) -> Result<Checkpoint, CheckpointError> {
         .from_file(path)
         .map_err(|e| error(e.to_string()))?;
     let layer = &image.layer_data;
-    let (width, height) = (layer.size.0, layer.size.1);
-    let count = width * height;
+    let count = layer.size.0 * layer.size.1;
     let u32_channel = |name: &str| -> Result<&[u32], CheckpointError> {
         let full = channel_name(name);
         let channel = layer
@@ -138,34 +174,69 @@ pub fn read_checkpoint(path: &Path) -> Result<Checkpoint, CheckpointError> {
             _ => Err(error(format!("channel {full} is not {count} unsigned integers"))),
         }
     };
-    let sums: Vec<(&[u32], &[u32])> = SUMS
-        .iter()
-        .map(|name| Ok((u32_channel(&format!("{name}.hi"))?, u32_channel(&format!("{name}.lo"))?)))
-        .collect::<Result<_, CheckpointError>>()?;
-    let counts: Vec<&[u32]> = COUNTS.iter().map(|name| u32_channel(name)).collect::<Result<_, _>>()?;
-    let targets = u32_channel(TARGET)?.to_vec();
-    let pixels = (0..count)
-        .map(|i| {
-            let sum = |k: usize| f64::from_bits(u64::from(sums[k].0[i]) << 32 | u64::from(sums[k].1[i]));
-            PixelSum::from_state((std::array::from_fn(sum), [counts[0][i], counts[1][i]]))
-        })
-        .collect();
-
+    let f64_channel = |name: &'static str| -> Result<(&'static str, Vec<f64>), CheckpointError> {
+        let (hi, lo) = (u32_channel(&format!("{name}.hi"))?, u32_channel(&format!("{name}.lo"))?);
+        Ok((name, hi.iter().zip(lo).map(|(&h, &l)| f64::from_bits(u64::from(h) << 32 | u64::from(l))).collect()))
+    };
+    let channels = PixelChannels {
+        f64s: f64s.iter().map(|&name| f64_channel(name)).collect::<Result<_, _>>()?,
+        u32s: u32s.iter().map(|&name| Ok((name, u32_channel(name)?.to_vec()))).collect::<Result<_, _>>()?,
+    };
     let mut metadata = from_exr_attributes(layer.attributes.other.iter().chain(&image.attributes.other));
-    let nan_samples = metadata
+    let hash = metadata.remove(STATE_HASH).ok_or_else(|| error(format!("the header has no {STATE_HASH}")))?;
+    let width = u32::try_from(layer.size.0).map_err(|_| error("too wide".into()))?;
+    let height = u32::try_from(layer.size.1).map_err(|_| error("too tall".into()))?;
+    // Hashed over the channels asked for: the ones this state is continued from.
+    if format!("{:016x}", state_hash((width, height), &channels, &metadata)) != hash {
+        return Err(error("its pixels do not match the hash in its header: the file is damaged".into()));
+    }
+    Ok(StateFile { width, height, channels, metadata })
+}
+
+/// A film's sums and counts and the pass `targets` as channels.
+fn film_channels(film: &Film, targets: &[u32]) -> PixelChannels {
+    let states: Vec<PixelState> = film.pixels.iter().map(PixelSum::state).collect();
+    PixelChannels {
+        f64s: SUMS.iter().enumerate().map(|(k, &name)| (name, states.iter().map(|(s, _)| s[k]).collect())).collect(),
+        u32s: COUNTS
+            .iter()
+            .enumerate()
+            .map(|(k, &name)| (name, states.iter().map(|(_, c)| c[k]).collect()))
+            .chain([(TARGET, targets.to_vec())])
+            .collect(),
+    }
+}
+
+/// Writes `film` with `targets` (one per pixel) and `metadata` to `path`, atomically.
+///
+/// # Panics
+/// If `targets` does not have one entry per pixel.
+pub fn write_checkpoint(path: &Path, film: &Film, targets: &[u32], metadata: &Metadata) -> Result<(), ImageWriteError> {
+    assert_eq!(targets.len(), film.pixels.len(), "one target per pixel");
+    let mut header = metadata.clone();
+    header.insert(NAN_SAMPLES.into(), film.nan_samples.to_string());
+    write_state(path, film, &film_channels(film, targets), &header)
+}
+
+/// Reads a checkpoint written by [`write_checkpoint`], refusing files that are damaged or were
+/// not written by it. The file is only read.
+pub fn read_checkpoint(path: &Path) -> Result<Checkpoint, CheckpointError> {
+    let mut state = read_state(path, &SUMS, &[COUNTS[0], COUNTS[1], TARGET])?;
+    let error = |reason: String| CheckpointError { path: path.to_owned(), reason };
+    let nan_samples = state
+        .metadata
         .remove(NAN_SAMPLES)
         .and_then(|n| n.parse().ok())
         .ok_or_else(|| error(format!("the header has no {NAN_SAMPLES}")))?;
-    let hash = metadata.remove(STATE_HASH).ok_or_else(|| error(format!("the header has no {STATE_HASH}")))?;
-    let (width, height) = (
-        u32::try_from(width).map_err(|_| error("too wide".into()))?,
-        u32::try_from(height).map_err(|_| error("too tall".into()))?,
-    );
-    let film = Film { width, height, pixels, nan_samples };
-    if format!("{:016x}", state_hash(&film, &targets)) != hash {
-        return Err(error("its pixels do not match the hash in its header: the file is damaged".into()));
-    }
-    Ok(Checkpoint { film, targets, metadata })
+    let channels = &state.channels;
+    let sums: Vec<&[f64]> = SUMS.iter().filter_map(|name| channels.f64s(name)).collect();
+    let counts: Vec<&[u32]> = COUNTS.iter().filter_map(|name| channels.u32s(name)).collect();
+    let pixels = (0..state.width as usize * state.height as usize)
+        .map(|i| PixelSum::from_state((std::array::from_fn(|k| sums[k][i]), [counts[0][i], counts[1][i]])))
+        .collect();
+    let targets = channels.u32s(TARGET).map(<[u32]>::to_vec).unwrap_or_default();
+    let film = Film { width: state.width, height: state.height, pixels, nan_samples };
+    Ok(Checkpoint { film, targets, metadata: state.metadata })
 }
 
 #[cfg(test)]

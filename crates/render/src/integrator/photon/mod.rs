@@ -27,12 +27,13 @@ mod emit;
 mod grid;
 mod pixel;
 mod sky;
+mod state;
 mod trace;
 mod visible;
 
 use super::stats::PathStats;
 use crate::color::Rgb;
-use crate::film::Film;
+use crate::film::{Film, ImageWriteError, Metadata};
 use crate::propagator::Propagator;
 use crate::renderer::{Outcome, RenderStats};
 use crate::sampling::{Rng, Sampler};
@@ -41,11 +42,13 @@ use crate::world::World;
 use background::Background;
 use emit::{RegionSplit, Sources};
 use grid::{Grid, Sphere};
-use pixel::PixelEstimate;
 use rayon::prelude::*;
 use spacetime::{Region, Spacetime};
+pub use state::SppmState;
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
+use std::sync::{Mutex, MutexGuard, OnceLock};
+use std::time::{Duration, Instant};
 use trace::{Deposit, PhotonPass};
 use visible::{CameraPass, CameraSample, VisiblePoint};
 
@@ -61,68 +64,125 @@ pub fn supports(spacetime: &Spacetime) -> bool {
     !matches!(spacetime, Spacetime::Kerr(_))
 }
 
-/// Renders `scene` with SPPM, `scene.settings.spp` iterations. `cancel` stops it between
-/// iterations (an unfinished iteration is dropped); `progress` is told `(iterations done,
-/// iterations total)`.
-///
-/// # Panics
-/// If the spacetime is not [supported](supports); scene files are checked for it when loaded.
-pub fn render(
-    scene: &Scene,
-    propagator: &Propagator,
-    cancel: &AtomicBool,
-    progress: &(dyn Fn(u64, u64) + Sync),
-) -> (Film, RenderStats) {
-    assert!(supports(&scene.spacetime), "photon mapping needs a time-symmetric spacetime, not {:?}", scene.spacetime);
-    let start = Instant::now();
+/// Photons an iteration of `scene`'s render: as set, or one per pixel.
+fn photons_per_iteration(scene: &Scene) -> u64 {
     let settings = &scene.settings;
-    let pixel_count = settings.width as usize * settings.height as usize;
-    let start_radius = |region| settings.photon.radius.unwrap_or_else(|| default_radius(&scene.world, region));
-    let sources = Sources::new(&scene.world, &scene.spacetime, propagator);
-    let sppm = Sppm {
-        scene,
-        camera: CameraPass {
-            world: &scene.world,
-            propagator,
-            max_depth: settings.max_depth,
-            background: Background::new(&scene.world, |region| sources.carry_sky(region)),
-        },
-        photons: settings.photon.per_iteration.unwrap_or(pixel_count as u64),
-        sources,
-        start_radius: [start_radius(Region::Upper), start_radius(Region::Lower)],
-    };
-    let mut pixels = vec![PixelEstimate::new(); pixel_count];
-    let (mut totals, mut done) = (Totals::default(), 0u32);
-    for iteration in 0..settings.spp {
-        if cancel.load(Ordering::Relaxed) {
-            break;
-        }
-        let Some(t) = sppm.iteration(&mut pixels, iteration, cancel) else { break };
-        totals.paths += t.paths;
-        totals.dropped += t.dropped;
-        done += 1;
-        progress(u64::from(done), u64::from(settings.spp));
-    }
-    let film = sppm.film(&pixels);
-    let stats = RenderStats {
-        paths: totals.paths,
-        samples: u64::from(done) * pixel_count as u64,
-        nan_samples: film.nan_samples() + totals.dropped,
-        seconds: start.elapsed().as_secs_f64(),
-        outcome: if done == settings.spp { Outcome::Finished } else { Outcome::Interrupted },
-        spp_min: done,
-        spp_max: done,
-        relative_error: None,
-    };
-    (film, stats)
+    settings.photon.per_iteration.unwrap_or(u64::from(settings.width) * u64::from(settings.height))
 }
 
-/// What iterations counted.
-#[derive(Default)]
-struct Totals {
-    paths: PathStats,
-    /// Camera samples and photon deposits dropped for being NaN or infinite.
-    dropped: u64,
+/// Where a continued render starts: the state of a checkpoint, what it counted, and how long
+/// it had run.
+pub struct SppmResume {
+    pub state: SppmState,
+    pub paths: PathStats,
+    pub seconds: f64,
+}
+
+/// An SPPM render of a scene to `scene.settings.spp` iterations, from scratch or continuing a
+/// checkpoint; its state can be taken from another thread between iterations.
+pub struct PhotonRenderer<'s> {
+    scene: &'s Scene,
+    propagator: Propagator,
+    state: Mutex<(SppmState, PathStats)>,
+    /// Seconds of earlier runs that this one continues.
+    earlier_seconds: f64,
+    started: OnceLock<Instant>,
+}
+
+impl<'s> PhotonRenderer<'s> {
+    /// # Panics
+    /// If the spacetime is not [supported](supports) (scene files are checked for it when
+    /// loaded), or `resume` is of another size than the scene.
+    pub fn new(scene: &'s Scene, resume: Option<SppmResume>) -> Self {
+        assert!(
+            supports(&scene.spacetime),
+            "photon mapping needs a time-symmetric spacetime, not {:?}",
+            scene.spacetime
+        );
+        let (width, height) = (scene.settings.width, scene.settings.height);
+        let (state, paths, earlier_seconds) = match resume {
+            Some(r) => {
+                assert_eq!((r.state.width(), r.state.height()), (width, height), "the checkpoint is of another size");
+                (r.state, r.paths, r.seconds)
+            }
+            None => (SppmState::new(width, height), PathStats::default(), 0.0),
+        };
+        Self {
+            scene,
+            propagator: crate::renderer::propagator(scene),
+            state: Mutex::new((state, paths)),
+            earlier_seconds,
+            started: OnceLock::new(),
+        }
+    }
+
+    /// Runs iterations until the scene's count is reached or `cancel` is set (an unfinished
+    /// iteration is dropped); `progress` is told `(iterations done, iterations total)`.
+    pub fn run(&self, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> RenderStats {
+        let start = *self.started.get_or_init(Instant::now);
+        let settings = &self.scene.settings;
+        let start_radius = |region| settings.photon.radius.unwrap_or_else(|| default_radius(&self.scene.world, region));
+        let sources = Sources::new(&self.scene.world, &self.scene.spacetime, &self.propagator);
+        let sppm = Sppm {
+            scene: self.scene,
+            camera: CameraPass {
+                world: &self.scene.world,
+                propagator: &self.propagator,
+                max_depth: settings.max_depth,
+                background: Background::new(&self.scene.world, |region| sources.carry_sky(region)),
+            },
+            photons: photons_per_iteration(self.scene),
+            sources,
+            start_radius: [start_radius(Region::Upper), start_radius(Region::Lower)],
+        };
+        loop {
+            let done = self.lock().0.iterations;
+            if done >= settings.spp
+                || cancel.load(Ordering::Relaxed)
+                || sppm.iteration(&self.state, done, cancel).is_none()
+            {
+                break;
+            }
+            progress(u64::from(done) + 1, u64::from(settings.spp));
+        }
+        self.stats(&self.lock(), start.elapsed())
+    }
+
+    /// A copy of the state after the last finished iteration, and the statistics so far.
+    pub fn snapshot(&self) -> (SppmState, RenderStats) {
+        let state = self.lock();
+        let elapsed = self.started.get().map_or(Duration::ZERO, Instant::elapsed);
+        (state.0.clone(), self.stats(&state, elapsed))
+    }
+
+    /// The image of `state` (see [`SppmState::film`]).
+    pub fn film(&self, state: &SppmState) -> Film {
+        state.film(photons_per_iteration(self.scene))
+    }
+
+    /// Writes `state` as a checkpoint with `metadata` (see [`SppmState::write`]).
+    pub fn write_checkpoint(&self, path: &Path, state: &SppmState, metadata: &Metadata) -> Result<(), ImageWriteError> {
+        state.write(path, photons_per_iteration(self.scene), metadata)
+    }
+
+    fn lock(&self) -> MutexGuard<'_, (SppmState, PathStats)> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    fn stats(&self, (state, paths): &(SppmState, PathStats), elapsed: Duration) -> RenderStats {
+        let done = state.iterations;
+        let film = self.film(state);
+        RenderStats {
+            paths: *paths,
+            samples: u64::from(done) * state.pixels.len() as u64,
+            nan_samples: film.nan_samples() + state.dropped,
+            seconds: self.earlier_seconds + elapsed.as_secs_f64(),
+            outcome: if done >= self.scene.settings.spp { Outcome::Finished } else { Outcome::Interrupted },
+            spp_min: done,
+            spp_max: done,
+            relative_error: None,
+        }
+    }
 }
 
 /// One render's fixed parts.
@@ -137,11 +197,14 @@ struct Sppm<'a> {
 }
 
 impl Sppm<'_> {
-    /// Runs one iteration into `pixels`; `None` (and `pixels` untouched) if cancelled.
-    fn iteration(&self, pixels: &mut [PixelEstimate], iteration: u32, cancel: &AtomicBool) -> Option<Totals> {
+    /// Runs iteration `iteration` into `state`; `None` (and `state` untouched) if cancelled.
+    fn iteration(&self, state: &Mutex<(SppmState, PathStats)>, iteration: u32, cancel: &AtomicBool) -> Option<()> {
+        let lock = || state.lock().unwrap_or_else(|e| e.into_inner());
         let (samples, camera_stats) = camera_pass(self.scene, &self.camera, iteration);
         let visible: Vec<Option<VisiblePoint>> = samples.iter().map(|(s, _)| s.visible).collect();
-        let radii: Vec<f64> = pixels
+        let radii: Vec<f64> = lock()
+            .0
+            .pixels
             .iter()
             .zip(&visible)
             .map(|(pixel, vp)| vp.as_ref().map_or(0.0, |vp| pixel.radius().unwrap_or(self.start(vp.region))))
@@ -159,8 +222,10 @@ impl Sppm<'_> {
         let seed = (self.scene.settings.seed, iteration);
         let Gathered { flux, found, paths: photon_stats, mut dropped } =
             photon_pass(&pass, split.map(|s| (s, &self.sources)), seed, self.photons, cancel)?;
+        let mut guard = lock();
+        let (state, paths) = &mut *guard;
         for ((pixel, (sample, weight)), (&radius, (flux, found))) in
-            pixels.iter_mut().zip(&samples).zip(radii.iter().zip(flux.into_iter().zip(found)))
+            state.pixels.iter_mut().zip(&samples).zip(radii.iter().zip(flux.into_iter().zip(found)))
         {
             // Non-finite radiance would poison the pixel's sums for good; the path tracer's
             // film drops such samples too.
@@ -168,25 +233,15 @@ impl Sppm<'_> {
             dropped += u64::from(!sample.emitted.is_finite());
             pixel.add_iteration(emitted, *weight, (radius, flux), found);
         }
-        let mut paths = camera_stats;
-        paths += photon_stats;
-        Some(Totals { paths, dropped })
+        *paths += camera_stats;
+        *paths += photon_stats;
+        state.dropped += dropped;
+        state.iterations = iteration + 1;
+        Some(())
     }
 
     fn start(&self, region: Region) -> f64 {
         self.start_radius[slot(region)]
-    }
-
-    /// The pixels' estimates as a film, one sample of weight 1 each.
-    fn film(&self, pixels: &[PixelEstimate]) -> Film {
-        let width = self.scene.settings.width;
-        let mut film = Film::new(width, self.scene.settings.height);
-        for (i, pixel) in pixels.iter().enumerate() {
-            if let Some(l) = pixel.radiance(self.photons) {
-                film.add_sample(i as u32 % width, i as u32 / width, l, 1.0);
-            }
-        }
-        film
     }
 }
 

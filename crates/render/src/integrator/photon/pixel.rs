@@ -13,7 +13,7 @@ use std::f64::consts::PI;
 /// Fraction of new photons kept per iteration; 2/3 as recommended by Knaus & Zwicker (2011).
 const ALPHA: f64 = 2.0 / 3.0;
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct PixelEstimate {
     /// Set when the pixel first has a visible point.
     radius: Option<f64>,
@@ -57,6 +57,20 @@ impl PixelEstimate {
             *t = (*t + f) * shrink;
         }
         (self.kept, self.radius) = (kept, Some(radius));
+    }
+
+    /// The estimate's exact state: radius (0 before the first visible point; radii are > 0),
+    /// photons kept, flux, emitted radiance and filter weight.
+    pub fn to_array(self) -> [f64; 9] {
+        let [t0, t1, t2] = self.tau;
+        let [e0, e1, e2] = self.emitted;
+        [self.radius.unwrap_or(0.0), self.kept, t0, t1, t2, e0, e1, e2, self.weight]
+    }
+
+    /// The estimate whose [state](Self::to_array) is `a`.
+    pub fn from_array(a: [f64; 9]) -> Self {
+        let radius = Some(a[0]).filter(|&r| r > 0.0);
+        Self { radius, kept: a[1], tau: [a[2], a[3], a[4]], emitted: [a[5], a[6], a[7]], weight: a[8] }
     }
 
     /// The pixel's radiance after the finished iterations with `photons` photons each:
