@@ -37,3 +37,26 @@ fn a_size_out_of_range_is_refused() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--size 0"), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+#[test]
+fn the_mesh_workload_reports_millions_of_triangles_and_writes_its_image() {
+    let image = std::env::temp_dir().join(format!("nullpath-bench-mesh-{}.png", std::process::id()));
+    let out =
+        nullpath(&["bench", "mesh", "--size", "6", "--repeat", "1", "--json", "--image", image.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // A rock of 4·500² triangles in the world's BVH, and twelve instances of another.
+    assert_eq!(v["triangles"]["stored"], 2_000_000);
+    assert_eq!(v["triangles"]["rendered"], 13_000_000);
+    assert!(v["bvh_build_seconds"].as_f64().unwrap() > 0.0);
+    if cfg!(target_os = "linux") {
+        // The triangles, their shapes and BVH nodes: well over 50 bytes each, and instancing
+        // keeps it far below the 13 M rendered ones' share of a few GB.
+        let bytes = v["bytes_per_stored_triangle"].as_f64().unwrap();
+        assert!((50.0..1000.0).contains(&bytes), "{bytes} bytes a triangle");
+    }
+    assert_eq!(v["room"]["workload"], "room");
+    assert!(v["meshes_over_room"]["median"].as_f64().unwrap() > 0.0);
+    assert!(image::open(&image).is_ok());
+    std::fs::remove_file(&image).unwrap();
+}

@@ -8,6 +8,8 @@ use spacetime::{Integrator, Schwarzschild, TraceSettings};
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
+mod mesh;
+
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Workload {
     /// 512² camera fan at r = 30 M, 40° field of view, Schwarzschild, adaptive 1e-8.
@@ -17,6 +19,10 @@ pub enum Workload {
     /// The poster's room with its black hole, and the same room with mass 0 (256², 64 spp,
     /// depth 8): the ratio of their times is the cost of curved spacetime.
     Room,
+    /// The room with its black hole and millions of triangles: a rock of a million triangles
+    /// and twelve instances of another (256², 16 spp, depth 8): BVH build time, memory per
+    /// triangle, rays/s.
+    Mesh,
 }
 
 /// The benchmark scenes, bundled with the binary so the benchmarks run anywhere.
@@ -36,6 +42,9 @@ pub struct Args {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
+    /// Also write one render of the workload's (first) scene to this image, to look at it.
+    #[arg(long, value_name = "PATH")]
+    image: Option<std::path::PathBuf>,
 }
 
 /// Throughput of one configuration.
@@ -87,6 +96,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             scene_bench(args, "cornell", cornell)
         }
         Workload::Room => room(args),
+        Workload::Mesh => mesh_bench(args),
     }
 }
 
@@ -124,6 +134,44 @@ fn room(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
+/// The room with millions of triangles (see [`mesh`]): what building it took, then its renders
+/// in turn with the room's own, whose ratio is the cost of the triangles.
+fn mesh_bench(args: &Args) -> Result<(), String> {
+    let room = scene::parse(ROOM_SCENE, "scenes/room-black-hole.toml", std::path::Path::new("."))
+        .map_err(|e| e.to_string())?;
+    let built = mesh::build(room.clone())?;
+    let scenes = [built.scene, room].map(|scene| {
+        let mut scene = workload(args, scene);
+        scene.settings.spp = 16;
+        scene
+    });
+    let (rows, turns) = in_turn(args, &scenes)?;
+    let ratios: Vec<f64> = turns.iter().map(|[meshes, room]| meshes / room).collect();
+    let ratio = median(&ratios);
+    let per_triangle = built.bytes.map(|b| b as f64 / built.stored as f64);
+    if args.json {
+        let mut report = report_json("mesh", &scenes[0], &rows[0]);
+        report["triangles"] = serde_json::json!({ "stored": built.stored, "rendered": built.rendered });
+        report["bvh_build_seconds"] = built.bvh_seconds.into();
+        report["bytes_per_stored_triangle"] = per_triangle.into();
+        report["room"] = report_json("room", &scenes[1], &rows[1]);
+        report["meshes_over_room"] = serde_json::json!({ "median": ratio, "pairs": ratios });
+        println!("{report}");
+    } else {
+        println!(
+            "mesh: {} triangles stored, {} rendered (instances); BVHs built in {:.2} s; {} per stored triangle",
+            built.stored,
+            built.rendered,
+            built.bvh_seconds,
+            per_triangle.map_or("memory not measured".to_owned(), |b| format!("{b:.0} bytes"))
+        );
+        report_text("room with the meshes", &scenes[0], &rows[0]);
+        report_text("room without them", &scenes[1], &rows[1]);
+        println!("with ÷ without time, all threads: {ratio:.2} (median of {} interleaved pairs)", ratios.len());
+    }
+    Ok(())
+}
+
 /// The middle value of `values` (the mean of the middle two for an even count).
 fn median(values: &[f64]) -> f64 {
     let mut sorted = values.to_vec();
@@ -155,6 +203,11 @@ fn in_turn<const N: usize>(
     args: &Args,
     scenes: &[render::scene::Scene; N],
 ) -> Result<([Rows; N], Vec<[f64; N]>), String> {
+    if let Some(path) = &args.image {
+        let film = render::renderer::render(&scenes[0], &AtomicBool::new(false), &|_, _| {}).0;
+        let metadata = render::film::Metadata::from([("bench".to_owned(), format!("{:?}", args.workload))]);
+        render::film::write_image(&film, path, &scenes[0].settings.tonemap, &metadata).map_err(|e| e.to_string())?;
+    }
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let cancel = AtomicBool::new(false);
     let mut rows: [Rows; N] = std::array::from_fn(|_| Vec::new());
