@@ -413,8 +413,8 @@ fn materials_can_be_overridden_by_name_or_all_at_once() {
 #[test]
 fn a_point_light_lights_the_floor_by_the_inverse_square_law() {
     // A KHR_lights_punctual point light of intensity I at height h above a diffuse floor of
-    // reflectance ρ: E = I/h² below it, and the floor's radiance is ρE/π. A spot light and a
-    // directional one are left out (with warnings).
+    // reflectance ρ: E = I/h² below it, and the floor's radiance is ρE/π. A directional light
+    // is left out (with a warning).
     let (h, intensity, rho) = (2.0f64, 3.0f64, 0.5f64);
     let expected = rho * intensity / (h * h) / std::f64::consts::PI;
     let dir = temp_dir("point-light");
@@ -422,14 +422,12 @@ fn a_point_light_lights_the_floor_by_the_inverse_square_law() {
         "extensionsUsed": ["KHR_lights_punctual"],
         "extensions": { "KHR_lights_punctual": { "lights": [
             { "type": "point", "color": [1.0, 1.0, 1.0], "intensity": intensity },
-            { "type": "spot", "intensity": 100.0, "spot": {} },
             { "type": "directional", "intensity": 100.0 },
         ] } },
     });
     let nodes = json!([
         { "translation": [0.0, h, 0.0], "extensions": { "KHR_lights_punctual": { "light": 0 } } },
-        { "translation": [0.0, 1.0, 0.0], "extensions": { "KHR_lights_punctual": { "light": 1 } } },
-        { "extensions": { "KHR_lights_punctual": { "light": 2 } } },
+        { "extensions": { "KHR_lights_punctual": { "light": 1 } } },
         { "mesh": 0, "translation": [50.0, 0.0, 0.0] },
     ]);
     let file = write_gltf(&dir, "lamp", &[one_triangle()], nodes, extra);
@@ -445,4 +443,60 @@ fn a_point_light_lights_the_floor_by_the_inverse_square_law() {
     let pixels = render(&s);
     let mean = pixels.iter().map(|p| p.iter().sum::<f64>() / 3.0).sum::<f64>() / pixels.len() as f64;
     assert!((mean / expected - 1.0).abs() < 0.01, "floor radiance {mean}, inverse square law {expected}");
+}
+
+#[test]
+fn a_spot_light_lights_the_floor_inside_its_cone_with_its_falloff() {
+    // A spot of intensity I at height h pointing straight down (its node's −z turned onto −y),
+    // inner cone 15°, outer 30°: at angle θ from its axis the floor's irradiance is
+    // E = I s(cos θ) cos³θ / h², s the glTF falloff, and its radiance ρE/π.
+    let (h, intensity, rho) = (2.0f64, 3.0f64, 0.5f64);
+    let (inner, outer) = (15f64.to_radians(), 30f64.to_radians());
+    let dir = temp_dir("spot-light");
+    let extra = json!({
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": { "KHR_lights_punctual": { "lights": [
+            { "type": "spot", "color": [1.0, 1.0, 1.0], "intensity": intensity,
+              "spot": { "innerConeAngle": inner, "outerConeAngle": outer } },
+        ] } },
+    });
+    let down = std::f64::consts::FRAC_1_SQRT_2;
+    let nodes = json!([
+        { "translation": [0.0, h, 0.0], "rotation": [-down, 0.0, 0.0, down],
+          "extensions": { "KHR_lights_punctual": { "light": 0 } } },
+        { "mesh": 0, "translation": [50.0, 0.0, 0.0] },
+    ]);
+    let file = write_gltf(&dir, "spot", &[one_triangle()], nodes, extra);
+    for theta in [0f64, 22.5, 40.0].map(f64::to_radians) {
+        let x = h * theta.tan();
+        let text = format!(
+            "[camera]\nposition = [{x}, 0.5, 0]\nlook_at = [{x}, 0, 0]\nup = [0, 0, 1]\nfov = 1\n\
+             [render]\nwidth = 2\nheight = 2\nspp = 256\n\
+             [[objects]]\nshape = {{ type = \"plane\", point = [0, 0, 0], normal = [0, 1, 0] }}\n\
+             material = {{ type = \"diffuse\", reflectance = {rho} }}\n\
+             [[objects]]\ngltf = \"{file}\"\n"
+        );
+        let s = load(&dir, &text).unwrap();
+        let pixels = render(&s);
+        let mean = pixels.iter().map(|p| p.iter().sum::<f64>() / 3.0).sum::<f64>() / pixels.len() as f64;
+        let s_theta = ((theta.cos() - outer.cos()) / (inner.cos() - outer.cos())).clamp(0.0, 1.0).powi(2);
+        let expected = rho * intensity * s_theta * theta.cos().powi(3) / (h * h) / std::f64::consts::PI;
+        if expected == 0.0 {
+            assert_eq!(mean, 0.0, "outside the cone, at {}°", theta.to_degrees());
+        } else {
+            let error = (mean / expected - 1.0).abs();
+            assert!(error < 0.02, "at {}°: floor radiance {mean}, expected {expected}", theta.to_degrees());
+        }
+    }
+    let extra = json!({
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": { "KHR_lights_punctual": { "lights": [
+            { "type": "spot", "intensity": 1.0, "spot": { "innerConeAngle": 0.5, "outerConeAngle": 0.4 } },
+        ] } },
+    });
+    let nodes = json!([{ "extensions": { "KHR_lights_punctual": { "light": 0 } } }]);
+    let file = write_gltf(&dir, "bad-spot", &[one_triangle()], nodes, extra);
+    let text = format!("[camera]\nposition = [0, 1, 3]\nlook_at = [0, 0, 0]\n[[objects]]\ngltf = \"{file}\"\n");
+    let err = load(&dir, &text).map(|_| ()).expect_err("inner cone wider than outer").to_string();
+    assert!(err.contains("light 0") && err.contains("innerConeAngle < outerConeAngle"), "{err}");
 }

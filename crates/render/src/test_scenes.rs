@@ -17,7 +17,7 @@ pub fn floor_lamp_board_ball() -> World {
         Shape::rectangle(Vec3::from_array(corner), Vec3::from_array(u), Vec3::from_array(v), &t).unwrap()
     };
     let object = |shape: Shape, emission: Option<Emission>| Object { shape, material: 0, emission };
-    let lamp = Emission { radiance: Rgb::ONE, two_sided: false };
+    let lamp = Emission::uniform(Rgb::ONE, false);
     let objects = vec![
         object(rectangle([-6.0, -4.0, 8.0], [12.0, 0.0, 0.0], [0.0, 0.0, -16.0]), None),
         object(rectangle([-2.5, 3.98, -2.5], [5.0, 0.0, 0.0], [0.0, 0.0, 5.0]), Some(lamp)),

@@ -69,7 +69,7 @@ fn room(spacetime: Spacetime) -> Scene {
         Object {
             shape: Shape::sphere(Vec3::new(0.0, 3.0, 0.0), 0.7, &t).unwrap(),
             material: 0,
-            emission: Some(Emission { radiance: Rgb::splat(5.0), two_sided: false }),
+            emission: Some(Emission::uniform(Rgb::splat(5.0), false)),
         },
         Object { shape: Shape::sphere(Vec3::new(0.6, 0.0, 0.0), 0.6, &t).unwrap(), material: 1, emission: None },
     ];

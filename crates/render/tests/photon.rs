@@ -104,7 +104,7 @@ fn lit_box() -> Scene {
         Object {
             shape: sphere(Vec3::new(0.0, 0.75, 0.0), 0.15),
             material: 0,
-            emission: Some(Emission { radiance: Rgb::splat(8.0), two_sided: false }),
+            emission: Some(Emission::uniform(Rgb::splat(8.0), false)),
         },
         Object { shape: sphere(Vec3::new(0.35, -0.7, -0.2), 0.3), material: 1, emission: None },
     ];
@@ -121,7 +121,7 @@ fn sppm_white_furnace_converges_to_the_analytic_radiance() {
     let wall = Object {
         shape: sphere(Vec3::ZERO, 2.0),
         material: 0,
-        emission: Some(Emission { radiance: Rgb::splat(0.25), two_sided: true }),
+        emission: Some(Emission::uniform(Rgb::splat(0.25), true)),
     };
     let camera =
         Camera::new(Region::Upper, Vec3::new(0.3, 0.1, 0.0), Vec3::new(1.0, 0.0, 0.5), Vec3::Y, 90.0, 0.0, None)
@@ -242,7 +242,7 @@ fn sky_photons_agree_with_brute_force_in_curved_space() {
 /// each region, white walls of albedo `a`; the upper room's wall also emits `Le` (both sides).
 fn wormhole_rooms(region: Region) -> Scene {
     let wall = |emission| Object { shape: sphere(Vec3::ZERO, 2.0), material: 0, emission };
-    let lamp = Some(Emission { radiance: Rgb::splat(1.0), two_sided: true });
+    let lamp = Some(Emission::uniform(Rgb::splat(1.0), true));
     let black = || Sky::Constant(Rgb::ZERO);
     let world = World::new(vec![diffuse(0.5)], (vec![wall(lamp)], black()), (vec![wall(None)], black()));
     // Looking outwards, over a wide patch of wall (many photons): the throat is behind.
@@ -290,7 +290,7 @@ fn schwarzschild_room() -> Scene {
         Object {
             shape: sphere(Vec3::new(0.0, 2.0, 0.0), 0.5),
             material: 0,
-            emission: Some(Emission { radiance: Rgb::splat(5.0), two_sided: false }),
+            emission: Some(Emission::uniform(Rgb::splat(5.0), false)),
         },
         Object { shape: sphere(Vec3::new(1.2, -0.4, 0.3), 0.6), material: 0, emission: None },
     ];

@@ -63,7 +63,7 @@ fn furnace(integrator: IntegratorKind) -> Rgb {
     let wall = Object {
         shape: Shape::sphere(Vec3::ZERO, 2.0, &Transform::identity()).unwrap(),
         material: 0,
-        emission: Some(Emission { radiance: Rgb::splat(0.25), two_sided: true }),
+        emission: Some(Emission::uniform(Rgb::splat(0.25), true)),
     };
     let mut s = settings(16, 16, 200);
     s.integrator = integrator;
@@ -156,7 +156,7 @@ fn the_image_does_not_depend_on_the_thread_count() {
     let lamp = Object {
         shape: Shape::sphere(Vec3::new(0.0, 2.0, 0.0), 0.5, &Transform::identity()).unwrap(),
         material: 0,
-        emission: Some(Emission { radiance: Rgb::new(4.0, 3.0, 2.0), two_sided: false }),
+        emission: Some(Emission::uniform(Rgb::new(4.0, 3.0, 2.0), false)),
     };
     let ball = Object {
         shape: Shape::sphere(Vec3::new(0.8, 0.5, 0.0), 0.5, &Transform::identity()).unwrap(),

@@ -10,7 +10,8 @@
 //! [`POINT_LIGHT_RADIUS`] and radiance `L = I / (π r²)`: seen from outside, a uniformly bright
 //! sphere has intensity `L·π r²` in every direction, so it lights everything farther than its
 //! radius as the point would, through the light sampling every area light gets (in curved space
-//! too).
+//! too). A spot light becomes a one-sided disk of that radius facing along its axis, with the
+//! spot [`Profile`]: intensity `I·s(cos θ)` from the disk's area `π r²`.
 
 use super::Builder;
 use crate::gltf_import::{self, GltfScene};
@@ -20,7 +21,7 @@ use render::material::Material;
 use render::shape::{Instance, InstancedMesh, Shape, TriangleMesh};
 use render::texture::Texture;
 use render::transform::Transform;
-use render::world::{Emission, Object};
+use render::world::{Emission, Object, Profile};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -84,9 +85,20 @@ impl Builder<'_> {
             let area = std::f64::consts::PI * POINT_LIGHT_RADIUS * POINT_LIGHT_RADIUS;
             for light in &scene.lights {
                 let centre = placement.point(light.position);
-                let shape = Shape::sphere(centre, POINT_LIGHT_RADIUS, &Transform::IDENTITY)
-                    .map_err(|e| in_file(format!("a point light: {e}")))?;
-                let emission = Emission { radiance: light.intensity / area as f32, two_sided: false };
+                let radiance = light.intensity / area as f32;
+                let (shape, emission) = match light.spot {
+                    None => (
+                        Shape::sphere(centre, POINT_LIGHT_RADIUS, &Transform::IDENTITY),
+                        Emission::uniform(radiance, false),
+                    ),
+                    Some(cone) => {
+                        let axis = placement.vector(cone.axis).normalize_or_zero();
+                        let profile = Profile::Spot { cos_inner: cone.cos_inner, cos_outer: cone.cos_outer };
+                        let emission = Emission { radiance, two_sided: false, profile };
+                        (Shape::disk(centre, axis, POINT_LIGHT_RADIUS, &Transform::IDENTITY), emission)
+                    }
+                };
+                let shape = shape.map_err(|e| in_file(format!("a punctual light: {e}")))?;
                 objects.push(Object { shape, material: black, emission: Some(emission) });
             }
         }

@@ -80,13 +80,13 @@ fn transform(n: &Node<'_>) -> Result<Transform> {
 /// `emission = { radiance = [r, g, b], two_sided = false }`, or just the radiance.
 fn emission(n: &Node<'_>) -> Result<Emission> {
     if n.is_number() || n.is_array() {
-        return Ok(Emission { radiance: radiance(n)?, two_sided: false });
+        return Ok(Emission::uniform(radiance(n)?, false));
     }
     if !n.is_table() {
         return Err(n.expected("a radiance [r, g, b] or a table { radiance = [r, g, b], two_sided = false }"));
     }
     let t = n.table(EMISSION_KEYS)?;
-    Ok(Emission { radiance: t.req("radiance", radiance)?, two_sided: t.or("two_sided", false, |n| n.bool())? })
+    Ok(Emission::uniform(t.req("radiance", radiance)?, t.or("two_sided", false, |n| n.bool())?))
 }
 
 impl Builder<'_> {

@@ -102,7 +102,7 @@ fn emission(m: &gltf::Material<'_>, name: &str) -> Result<Option<Emission>, Stri
     if !(radiance.is_finite() && radiance.min_element() >= 0.0) {
         return Err(format!("{name}: its emission {radiance} is not a finite non-negative colour"));
     }
-    Ok((radiance.max_element() > 0.0).then_some(Emission { radiance, two_sided: m.double_sided() }))
+    Ok((radiance.max_element() > 0.0).then_some(Emission::uniform(radiance, m.double_sided())))
 }
 
 /// The base colour: its texture's linear pixels times the factor, or the factor alone.

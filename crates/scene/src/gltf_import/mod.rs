@@ -33,19 +33,29 @@ pub(crate) struct Placement {
     pub transform: Transform,
 }
 
-/// A `KHR_lights_punctual` point light, at `position` in the file's root space, of radiant
-/// intensity `intensity` (colour × intensity, per steradian) in every direction.
+/// A `KHR_lights_punctual` point or spot light, at `position` in the file's root space, of
+/// radiant intensity `intensity` (colour × intensity, per steradian): in every direction, or
+/// for a spot along its axis.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct PointLight {
+pub(crate) struct PunctualLight {
     pub position: Vec3,
     pub intensity: Rgb,
+    pub spot: Option<SpotCone>,
+}
+
+/// A spot light's axis (unit, root space) and the cosines of its inner and outer cone angles.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SpotCone {
+    pub axis: Vec3,
+    pub cos_inner: f64,
+    pub cos_outer: f64,
 }
 
 /// What a glTF file holds, ready for the scene builder.
 pub(crate) struct GltfScene {
     pub primitives: Vec<Primitive>,
     pub placements: Vec<Placement>,
-    pub lights: Vec<PointLight>,
+    pub lights: Vec<PunctualLight>,
     pub materials: Vec<GltfMaterial>,
     /// Things ignored that the user may want to know about (unsupported optional extensions…).
     pub warnings: Vec<String>,
@@ -149,7 +159,7 @@ struct Found {
     /// Each mesh's first primitive in the flat list of primitives.
     first_primitive: Vec<usize>,
     placements: Vec<Placement>,
-    lights: Vec<PointLight>,
+    lights: Vec<PunctualLight>,
     warnings: Vec<String>,
 }
 
@@ -172,20 +182,31 @@ fn place(node: &gltf::Node<'_>, parent: &Transform, found: &mut Found, depth: us
     }
     if let Some(light) = node.light() {
         let what = named("light", light.index(), light.name());
+        let [r, g, b] = light.color().map(|c| c * light.intensity());
+        let intensity = Rgb::new(r, g, b);
+        if !(intensity.is_finite() && intensity.min_element() >= 0.0) {
+            return Err(format!("{what}: its intensity {intensity} is not a finite non-negative colour"));
+        }
+        let position = transform.point(Vec3::ZERO);
         match light.kind() {
             gltf::khr_lights_punctual::Kind::Point => {
-                let [r, g, b] = light.color().map(|c| c * light.intensity());
-                let intensity = Rgb::new(r, g, b);
-                if !(intensity.is_finite() && intensity.min_element() >= 0.0) {
-                    return Err(format!("{what}: its intensity {intensity} is not a finite non-negative colour"));
+                found.lights.push(PunctualLight { position, intensity, spot: None });
+            }
+            gltf::khr_lights_punctual::Kind::Spot { inner_cone_angle, outer_cone_angle } => {
+                let (inner, outer) = (f64::from(inner_cone_angle), f64::from(outer_cone_angle));
+                if !(0.0 <= inner && inner < outer && outer <= std::f64::consts::FRAC_PI_2) {
+                    return Err(format!(
+                        "{what}: its cone angles must satisfy 0 ≤ innerConeAngle < outerConeAngle ≤ π/2, \
+                         got {inner_cone_angle} and {outer_cone_angle}"
+                    ));
                 }
-                found.lights.push(PointLight { position: transform.point(Vec3::ZERO), intensity });
+                // A spot shines along its node's −z axis.
+                let axis = transform.vector(Vec3::NEG_Z).normalize_or_zero();
+                let spot = SpotCone { axis, cos_inner: inner.cos(), cos_outer: outer.cos() };
+                found.lights.push(PunctualLight { position, intensity, spot: Some(spot) });
             }
             gltf::khr_lights_punctual::Kind::Directional => {
                 found.warnings.push(format!("{what}: directional lights are not imported"));
-            }
-            gltf::khr_lights_punctual::Kind::Spot { .. } => {
-                found.warnings.push(format!("{what}: spot lights are not imported"));
             }
         }
     }

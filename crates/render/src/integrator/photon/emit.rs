@@ -156,7 +156,7 @@ pub(super) fn emit(
         region,
         origin: leave(point, normal, local_normal, aimed.direction),
         direction: aimed.direction,
-        power: emission.radiance * scale as f32,
+        power: emission.radiance_towards(local_normal, aimed.direction) * scale as f32,
     })
 }
 
@@ -175,7 +175,7 @@ mod tests {
         let lamp = |r: f32| Object {
             shape: Shape::sphere(Vec3::ZERO, 1.0, &Transform::identity()).unwrap(),
             material: 0,
-            emission: Some(Emission { radiance: Rgb::splat(r), two_sided: false }),
+            emission: Some(Emission::uniform(Rgb::splat(r), false)),
         };
         let black = || Sky::Constant(Rgb::ZERO);
         let materials = vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::ONE) }];
