@@ -500,3 +500,50 @@ fn a_spot_light_lights_the_floor_inside_its_cone_with_its_falloff() {
     let err = load(&dir, &text).map(|_| ()).expect_err("inner cone wider than outer").to_string();
     assert!(err.contains("light 0") && err.contains("innerConeAngle < outerConeAngle"), "{err}");
 }
+
+#[test]
+fn a_gltf_camera_frames_the_picture_as_the_same_camera_written_out_does() {
+    // A camera node at (1, 2, 3) turned 90° about y looks along −x with y up; placed by the
+    // object's transform (moved by 1 along z) it is the camera at (1, 2, 4) looking at
+    // (0, 2, 4), with the file's 0.5 rad vertical field of view.
+    let dir = temp_dir("camera");
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    let extra = json!({ "cameras": [
+        { "name": "overview", "type": "perspective", "perspective": { "yfov": 0.5, "znear": 0.01 } },
+        { "name": "plan", "type": "orthographic",
+          "orthographic": { "xmag": 1.0, "ymag": 1.0, "znear": 0.01, "zfar": 10.0 } },
+    ] });
+    let nodes = json!([
+        { "mesh": 0, "translation": [-3.0, 2.0, 4.0], "scale": [1.0, 3.0, 3.0] },
+        { "camera": 0, "translation": [1.0, 2.0, 3.0], "rotation": [0.0, half, 0.0, half] },
+        { "camera": 1 },
+    ]);
+    let file = write_gltf(&dir, "framed", &[one_triangle()], nodes, extra);
+    let scene = |camera: &str| {
+        format!(
+            "{camera}\n[render]\nwidth = 12\nheight = 8\nspp = 4\n\
+             [[objects]]\ngltf = \"{file}\"\ntransform = {{ translate = [0, 0, 1] }}\n\
+             material = {{ type = \"diffuse\", reflectance = 0.8 }}\n\
+             [[objects]]\nshape = {{ type = \"sphere\", center = [-2, 4, 4], radius = 1 }}\n\
+             emission = {{ radiance = [3, 2, 1] }}\n"
+        )
+    };
+    let imported = load(&dir, &scene("[camera]\ngltf_camera = \"overview\"")).unwrap();
+    let fov = 0.5f64.to_degrees();
+    let written =
+        load(&dir, &scene(&format!("[camera]\nposition = [1, 2, 4]\nlook_at = [0, 2, 4]\nfov = {fov}"))).unwrap();
+    let (a, b) = (render(&imported), render(&written));
+    assert!(a.iter().flatten().any(|&v| v > 0.0), "the camera sees the lamp and the triangle");
+    for (p, q) in a.iter().zip(&b) {
+        assert!(p.iter().zip(q).all(|(x, y)| (x - y).abs() <= 1e-6 * (1.0 + y.abs())), "{p:?} against {q:?}");
+    }
+    // Errors: an unknown name lists the known ones (not the orthographic camera); a pose given
+    // beside the glTF camera is refused.
+    let err = load(&dir, &scene("[camera]\ngltf_camera = \"plan\"")).map(|_| ()).unwrap_err().to_string();
+    assert!(err.contains("no camera named \"plan\"") && err.contains("\"overview\""), "{err}");
+    let err = load(&dir, &scene("[camera]\ngltf_camera = \"overview\"\nposition = [0, 0, 0]"))
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("leave out position"), "{err}");
+}

@@ -24,6 +24,7 @@ pub(super) const CAMERA_KEYS: &[&str] = &[
     "speed_of_light",
     "keyframes",
     "orbit",
+    "gltf_camera",
 ];
 const KEYFRAME_KEYS: &[&str] = &["time", "position", "look_at", "up", "fov", "focus_distance"];
 const ORBIT_KEYS: &[&str] = &["center", "axis", "period"];
@@ -65,7 +66,10 @@ impl Builder<'_> {
             (Some(_), Some(orbit)) => return Err(orbit.err("give either keyframes or an orbit, not both")),
             (Some(keys), None) => keyframes(t, &keys.array()?, &defaults, kind)?,
             (None, orbit) => {
-                let start = keyframe(t, 0.0, &defaults)?;
+                let start = match t.get("gltf_camera") {
+                    Some(n) => self.gltf_keyframe(t, &n)?,
+                    None => keyframe(t, 0.0, &defaults)?,
+                };
                 match orbit {
                     Some(orbit) => orbit_path(&orbit.table(ORBIT_KEYS)?, start)?,
                     None => CameraPath::Keyframes(vec![start]),
@@ -74,6 +78,40 @@ impl Builder<'_> {
         };
         let projection = (PROJECTIONS[kind].2)(t, &path.pose(0.0))?;
         Ok(CameraRig { region: self.region(t)?, path, projection, observer: observer(t)? })
+    }
+
+    /// The pose of the glTF camera named by `name` (field `gltf_camera` of `t`), its field of
+    /// view unless `t` gives `fov`.
+    fn gltf_keyframe(&self, t: &Table<'_>, name: &crate::reader::Node<'_>) -> Result<Keyframe> {
+        for key in ["position", "look_at", "up"] {
+            if let Some(n) = t.get(key) {
+                return Err(n.err("the glTF camera (gltf_camera) gives the pose: leave out position, look_at and up"));
+            }
+        }
+        let wanted = name.str()?;
+        let Some(camera) = self.gltf_cameras.iter().find(|c| c.name == wanted) else {
+            let mut known: Vec<String> = self.gltf_cameras.iter().map(|c| format!("\"{}\"", c.name)).collect();
+            known.sort_unstable();
+            let known =
+                if known.is_empty() { "they have none".to_owned() } else { format!("they have {}", known.join(", ")) };
+            return Err(name.err(format!("no camera named \"{wanted}\" in the scene's glTF objects; {known}")));
+        };
+        let orientation = look_rotation(camera.forward, camera.up)
+            .map_err(|_| name.err(format!("glTF camera \"{wanted}\" has a degenerate transform")))?;
+        let fov = t.or("fov", camera.fov, |n| n.f64())?;
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(t.loc("fov").err(format!("must be in (0, 180) degrees, got {}", num(fov))));
+        }
+        let focus_distance = match (t.get("aperture"), t.opt("focus_distance", |n| n.f64())?) {
+            (_, Some(d)) if !(d > 0.0 && d.is_finite()) => {
+                return Err(t.loc("focus_distance").err(format!("must be > 0, got {}", num(d))))
+            }
+            (_, Some(d)) => d,
+            (Some(n), None) => return Err(n.err("a glTF camera with an aperture needs a focus_distance")),
+            // A pinhole is sharp at every distance.
+            (None, None) => 1.0,
+        };
+        Ok(Keyframe { time: 0.0, position: camera.position, orientation, fov, focus_distance })
     }
 }
 
@@ -157,7 +195,7 @@ fn keyframes(
     defaults: &Defaults,
     projection: usize,
 ) -> Result<CameraPath> {
-    for key in ["position", "look_at"] {
+    for key in ["position", "look_at", "gltf_camera"] {
         if let Some(n) = camera.get(key) {
             return Err(n.err("with keyframes, give position and look_at in each keyframe"));
         }

@@ -17,6 +17,7 @@ use super::Builder;
 use crate::gltf_import::{self, GltfScene};
 use crate::reader::{Node, Result, Table};
 use render::color::Rgb;
+use render::geometry::Vec3;
 use render::material::Material;
 use render::shape::{Instance, InstancedMesh, Shape, TriangleMesh};
 use render::texture::Texture;
@@ -27,6 +28,18 @@ use std::sync::Arc;
 
 /// Radius of the sphere that stands for a point light, in world units (glTF's metres).
 const POINT_LIGHT_RADIUS: f64 = 0.01;
+
+/// A glTF file's camera placed in the world: `[camera] gltf_camera = "NAME"` takes its pose.
+#[derive(Clone, Debug)]
+pub(crate) struct PlacedCamera {
+    pub name: String,
+    pub position: Vec3,
+    /// Unit viewing direction and up.
+    pub forward: Vec3,
+    pub up: Vec3,
+    /// Vertical field of view, degrees.
+    pub fov: f64,
+}
 
 /// What a glTF material becomes in the scene: a material index and its emission.
 type Assigned = (usize, Option<Emission>);
@@ -44,6 +57,16 @@ impl Builder<'_> {
         let scene = gltf_import::import(&path).map_err(in_file)?;
         for w in &scene.warnings {
             eprintln!("warning: glTF file '{}': {w}", path.display());
+        }
+        for camera in &scene.cameras {
+            let to_world = camera.transform.then(placement);
+            self.gltf_cameras.push(PlacedCamera {
+                name: camera.name.clone(),
+                position: to_world.point(Vec3::ZERO),
+                forward: to_world.vector(Vec3::NEG_Z).normalize_or_zero(),
+                up: to_world.vector(Vec3::Y).normalize_or_zero(),
+                fov: camera.yfov.to_degrees(),
+            });
         }
         let assigned = self.gltf_materials(t, &scene)?;
         let mut uses = vec![0usize; scene.primitives.len()];

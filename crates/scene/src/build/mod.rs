@@ -34,6 +34,8 @@ pub(crate) struct Builder<'a> {
     default_material: Option<usize>,
     /// Which regions the spacetime has: a wormhole has two.
     two_regions: bool,
+    /// The cameras of the glTF objects read so far, placed in the world.
+    gltf_cameras: Vec<gltf_object::PlacedCamera>,
 }
 
 const TOP_LEVEL: &[&str] =
@@ -59,7 +61,25 @@ pub(crate) fn scene<'a>(
         material_names: HashMap::new(),
         default_material: None,
         two_regions: matches!(spacetime, Spacetime::Ellis(_)),
+        gltf_cameras: Vec::new(),
     };
+    if let Some(n) = root.get("materials") {
+        b.named_materials(&n.any_table()?)?;
+    }
+    // Objects before cameras: a camera may be one of their glTF files'.
+    let (mut upper, mut lower): (Vec<Object>, Vec<Object>) = (Vec::new(), Vec::new());
+    if let Some(n) = root.get("objects") {
+        if n.is_table() {
+            return Err(n.err("expected an array of tables: write each object as [[objects]], not [objects]"));
+        }
+        for element in n.array()? {
+            let (region, objects) = b.object(&element)?;
+            match region {
+                Region::Upper => upper.extend(objects),
+                Region::Lower => lower.extend(objects),
+            }
+        }
+    }
     let (cameras, chosen) = camera_tables(doc, &root, view)?;
     let mut rigs = Vec::with_capacity(cameras.len());
     for t in &cameras {
@@ -93,22 +113,6 @@ pub(crate) fn scene<'a>(
         }
         None => Sky::Constant(render::color::Rgb::ZERO),
     };
-    if let Some(n) = root.get("materials") {
-        b.named_materials(&n.any_table()?)?;
-    }
-    let (mut upper, mut lower): (Vec<Object>, Vec<Object>) = (Vec::new(), Vec::new());
-    if let Some(n) = root.get("objects") {
-        if n.is_table() {
-            return Err(n.err("expected an array of tables: write each object as [[objects]], not [objects]"));
-        }
-        for element in n.array()? {
-            let (region, objects) = b.object(&element)?;
-            match region {
-                Region::Upper => upper.extend(objects),
-                Region::Lower => lower.extend(objects),
-            }
-        }
-    }
     let world = World::new(b.materials, (upper, upper_sky), (lower, lower_sky));
     Ok(Scene { spacetime, axis, camera, world, settings, animation: Some(animation) })
 }

@@ -51,11 +51,22 @@ pub(crate) struct SpotCone {
     pub cos_outer: f64,
 }
 
+/// A perspective camera: its name (the camera's, else its node's), the transform from its own
+/// space (looking along −z, y up) to the file's root space, and its vertical field of view in
+/// radians.
+#[derive(Clone, Debug)]
+pub(crate) struct GltfCamera {
+    pub name: String,
+    pub transform: Transform,
+    pub yfov: f64,
+}
+
 /// What a glTF file holds, ready for the scene builder.
 pub(crate) struct GltfScene {
     pub primitives: Vec<Primitive>,
     pub placements: Vec<Placement>,
     pub lights: Vec<PunctualLight>,
+    pub cameras: Vec<GltfCamera>,
     pub materials: Vec<GltfMaterial>,
     /// Things ignored that the user may want to know about (unsupported optional extensions…).
     pub warnings: Vec<String>,
@@ -84,7 +95,8 @@ pub(crate) fn import(path: &Path) -> Result<GltfScene, String> {
         }
     }
     let materials = material::materials(document, base, &buffers, &mut warnings)?;
-    let mut found = Found { first_primitive, placements: Vec::new(), lights: Vec::new(), warnings };
+    let mut found =
+        Found { first_primitive, placements: Vec::new(), lights: Vec::new(), cameras: Vec::new(), warnings };
     let roots: Vec<gltf::Node<'_>> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
         None => return Err("has no scene to place (no \"scenes\")".to_string()),
@@ -92,14 +104,11 @@ pub(crate) fn import(path: &Path) -> Result<GltfScene, String> {
     for node in roots {
         contained(|| place(&node, &Transform::IDENTITY, &mut found, 0), "the node hierarchy")??;
     }
-    let Found { placements, lights, mut warnings, .. } = found;
+    let Found { placements, lights, cameras, warnings, .. } = found;
     if placements.is_empty() && lights.is_empty() {
         return Err("its scene places no mesh and no light".to_string());
     }
-    if document.cameras().next().is_some() {
-        warnings.push("its cameras are not imported (the scene file's [camera] is used)".to_string());
-    }
-    Ok(GltfScene { primitives, placements, lights, materials, warnings })
+    Ok(GltfScene { primitives, placements, lights, cameras, materials, warnings })
 }
 
 /// Refuses required extensions that are not supported; warns of used ones.
@@ -160,6 +169,7 @@ struct Found {
     first_primitive: Vec<usize>,
     placements: Vec<Placement>,
     lights: Vec<PunctualLight>,
+    cameras: Vec<GltfCamera>,
     warnings: Vec<String>,
 }
 
@@ -207,6 +217,22 @@ fn place(node: &gltf::Node<'_>, parent: &Transform, found: &mut Found, depth: us
             }
             gltf::khr_lights_punctual::Kind::Directional => {
                 found.warnings.push(format!("{what}: directional lights are not imported"));
+            }
+        }
+    }
+    if let Some(camera) = node.camera() {
+        let what = named("camera", camera.index(), camera.name());
+        match camera.projection() {
+            gltf::camera::Projection::Perspective(p) => {
+                let yfov = f64::from(p.yfov());
+                if !(yfov > 0.0 && yfov < std::f64::consts::PI) {
+                    return Err(format!("{what}: its yfov {} must lie in (0, π) radians", p.yfov()));
+                }
+                let name = camera.name().or(node.name()).map_or_else(|| what.clone(), str::to_owned);
+                found.cameras.push(GltfCamera { name, transform, yfov });
+            }
+            gltf::camera::Projection::Orthographic(_) => {
+                found.warnings.push(format!("{what}: orthographic cameras are not imported"));
             }
         }
     }
