@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 /// A scene for the preview tests: a black hole (mass 0.3) in front of a bright gradient sky,
 /// with a lamp-lit sphere off to one side so that turning the camera changes the picture. The
-/// sky is never dark, so dark pixels are the hole's shadow.
+/// sky is never dark (nor so bright that the tone map saturates it), so dark pixels are the hole's shadow.
 pub const SCENE: &str = r#"# preview test scene
 [spacetime]
 type = "schwarzschild"
@@ -30,9 +30,9 @@ max_depth = 2
 
 [sky]
 type = "gradient"
-zenith = [0.9, 0.9, 1.0]
-horizon = [0.6, 0.7, 0.9]
-nadir = [0.8, 0.6, 0.4]
+zenith = [0.3, 0.3, 0.35]
+horizon = [0.2, 0.25, 0.3]
+nadir = [0.25, 0.2, 0.15]
 
 [[objects]]
 shape = { type = "sphere", center = [2.2, 0.6, 0], radius = 0.5 }
