@@ -134,7 +134,9 @@ impl Cdp {
     fn wait(&mut self, what: &str, condition: &str) {
         let start = Instant::now();
         while self.eval(&format!("Boolean({condition})")) != json!(true) {
-            let shown = self.eval("JSON.stringify({ frame: window.preview && preview.frame, state: window.preview && preview.state })");
+            let shown = self.eval(
+                "JSON.stringify({ frame: window.preview && preview.frame, state: window.preview && preview.state })",
+            );
             assert!(start.elapsed() < PATIENCE, "timed out waiting for {what}: {shown}");
             std::thread::sleep(Duration::from_millis(50));
         }
@@ -285,7 +287,11 @@ fn the_page_previews_a_scene_live() {
     page.wait("the reload", "preview.state.reloads >= 1");
     let red = page.settled("the frame of the edited file", generation);
     let shown = page.eval("JSON.stringify([preview.frame, preview.state])");
-    assert!(red.difference(&heavier) > 3.0, "the frame changed: {} {red:?} {heavier:?} {shown}", red.difference(&heavier));
+    assert!(
+        red.difference(&heavier) > 3.0,
+        "the frame changed: {} {red:?} {heavier:?} {shown}",
+        red.difference(&heavier)
+    );
 
     // A broken file shows its error on the page, as `nullpath render` prints it.
     std::fs::write(&scene, SCENE.replace("mass = 0.3", "mass = \"heavy\"")).unwrap();
