@@ -240,7 +240,11 @@ fn the_page_previews_a_scene_live() {
     let opened = Instant::now();
     let (_, mut page) = browser.open(&preview.url());
     page.wait("the first frame", "window.preview && preview.framesShown > 0");
-    eprintln!("first frame on the page {:.0} ms after the tab opened", opened.elapsed().as_secs_f64() * 1e3);
+    eprintln!(
+        "first frame on the page {} ms after it began loading, {:.0} ms after the tab was asked for",
+        page.eval("preview.firstFrameMs"),
+        opened.elapsed().as_secs_f64() * 1e3
+    );
     assert_eq!(page.eval("document.title"), "nullpath preview");
     assert_eq!(page.eval("document.getElementById('scene').textContent"), scene.display().to_string());
     let before = page.settled("the refined frame", 0);
@@ -279,6 +283,7 @@ fn the_page_previews_a_scene_live() {
     let heavier = page.settled("the frame with more mass", generation);
     let mass = page.eval("preview.state.parameters[0].value").as_f64().unwrap();
     assert!((0.5..0.7).contains(&mass), "mass {mass}");
+    eprintln!("mass 0.3 → {mass}: the shadow grows from {} to {} dark pixels", dragged.dark, heavier.dark);
     assert!(heavier.dark > 2 * dragged.dark, "the shadow grows: {} → {} dark pixels", dragged.dark, heavier.dark);
 
     // Editing the file reloads it: a red sky.

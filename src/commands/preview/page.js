@@ -210,7 +210,7 @@ $("render").addEventListener("click", () => button("/render", { output: $("outpu
 // ---- state and frames -----------------------------------------------------------------------
 let fetchingFrame = false;
 
-async function showFrame(version) {
+async function showFrame() {
   if (fetchingFrame) return;
   fetchingFrame = true;
   try {
@@ -222,6 +222,8 @@ async function showFrame(version) {
       context.imageSmoothingEnabled = true;
       context.drawImage(bitmap, 0, 0, canvas.width, canvas.height);
       preview.framesShown += 1;
+      // Milliseconds from opening the page to its first frame.
+      if (preview.firstFrameMs === undefined) preview.firstFrameMs = Math.round(performance.now());
       preview.frame = {
         version: Number(response.headers.get("X-Frame-Version")),
         generation: Number(response.headers.get("X-Frame-Generation")),
@@ -254,8 +256,10 @@ function showState(state) {
   const f = state.frame;
   const job = state.render;
   const jobText = job ? ` · render ${job.output}: ${job.state} ${Math.round(100 * job.progress)}% ${job.message}` : "";
-  $("status").textContent = (f ? `${f.width}×${f.height}, ${f.spp} spp${f.done ? " (done)" : ""}` : "rendering…") + jobText;
-  if (f && (!preview.frame || preview.frame.version !== f.version)) showFrame(f.version);
+  const first = preview.firstFrameMs === undefined ? "" : ` · first frame after ${preview.firstFrameMs} ms`;
+  const frameText = f ? `${f.width}×${f.height}, ${f.spp} spp${f.done ? " (done)" : ""}` : "rendering…";
+  $("status").textContent = frameText + first + jobText;
+  if (f && (!preview.frame || preview.frame.version !== f.version)) showFrame();
 }
 
 async function poll() {
@@ -267,4 +271,6 @@ async function poll() {
   }
   setTimeout(poll, 150);
 }
+// The frame is asked for at once, not only after the first state arrives.
+showFrame();
 poll();

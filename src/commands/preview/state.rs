@@ -57,10 +57,16 @@ pub struct Shared {
 impl Inner {
     /// Recomputes `current` and starts a new generation.
     fn touch(&mut self) {
-        self.current = match &self.loaded {
-            Ok(scene) => self.overrides.apply(scene).map(Arc::new),
+        let current = match &self.loaded {
+            Ok(scene) => self.overrides.apply(scene),
             Err(e) => Err(e.clone()),
         };
+        self.start(current);
+    }
+
+    /// Starts a new generation that renders `current`.
+    fn start(&mut self, current: Result<Scene, String>) {
+        self.current = current.map(Arc::new);
         self.generation += 1;
     }
 }
@@ -103,9 +109,9 @@ impl Shared {
         let mut inner = self.lock();
         let loaded = inner.loaded.clone()?;
         let next = change(&inner.overrides, &loaded)?;
-        next.apply(&loaded)?;
+        let current = next.apply(&loaded)?;
         inner.overrides = next;
-        inner.touch();
+        inner.start(Ok(current));
         self.changed.notify_all();
         Ok(())
     }
