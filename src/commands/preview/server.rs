@@ -44,6 +44,7 @@ pub fn serve(server: &tiny_http::Server, app: &Arc<App>) {
 fn handle(app: &App, mut request: Request) {
     let reply = if !request.remote_addr().is_some_and(|a| a.ip().is_loopback()) {
         text(403, "only connections from this machine's loopback interface are served")
+            .with_header(header("Connection", "close"))
     } else if !host_is_ours(&request, app.port) {
         text(403, "the Host header must name this server (127.0.0.1 or localhost and its port)")
     } else {
@@ -114,7 +115,7 @@ fn route(app: &App, request: &mut Request) -> Reply {
 /// The latest frame, with its version and samples in headers; 204 before the first.
 fn frame(app: &App) -> Reply {
     let Some(frame) = app.shared.lock().frame.clone() else {
-        return text(204, "");
+        return reply(204, "image/png", Vec::new());
     };
     reply(200, "image/png", frame.png.to_vec())
         .with_header(header("X-Frame-Version", &frame.version.to_string()))
