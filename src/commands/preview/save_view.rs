@@ -39,8 +39,8 @@ fn vector(v: [f64; 3]) -> Item {
     value(v.iter().map(|&c| rounded(c)).collect::<Array>())
 }
 
-/// `text` (a scene file) with the view `name` set to `eye`, seen through `scene`'s projection;
-/// an existing view of that name is replaced.
+/// `text` (a scene file) with the view `name` set to `eye`, seen through `scene`'s projection
+/// from the camera's region; an existing view of that name is replaced.
 pub fn with_view(text: &str, name: &str, eye: &Eye, scene: &Scene) -> Result<String, String> {
     check_name(name)?;
     let mut doc: DocumentMut = text.parse().map_err(|e| format!("the scene file is not valid TOML: {e}"))?;
@@ -69,6 +69,9 @@ pub fn with_view(text: &str, name: &str, eye: &Eye, scene: &Scene) -> Result<Str
             view.insert("projection", value("ods"));
             view.insert("ipd", value(rounded(o.ipd())));
         }
+    }
+    if scene.camera.region == spacetime::Region::Lower {
+        view.insert("region", value("lower"));
     }
     views.insert(name, Item::Table(view));
     Ok(doc.to_string())
