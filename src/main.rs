@@ -25,6 +25,8 @@ enum Command {
     Info(commands::info::Args),
     /// Trace one ray that comes in from infinity and report its fate and bending angle.
     Geodesic(commands::geodesic::Args),
+    /// Serve a live, progressively refining preview of a scene on http://127.0.0.1:PORT/.
+    Preview(commands::preview::Args),
     /// Measure performance on the standard workloads.
     Bench(commands::bench::Args),
 }
@@ -37,6 +39,7 @@ fn main() -> ExitCode {
         Command::Merge(args) => commands::merge::run(&args).map_err(Failure::from),
         Command::Info(args) => commands::info::run(&args).map_err(Failure::from),
         Command::Geodesic(args) => commands::geodesic::run(&args).map_err(Failure::from),
+        Command::Preview(args) => commands::preview::run(&args).map_err(Failure::from),
         Command::Bench(args) => commands::bench::run(&args).map_err(Failure::from),
     };
     match result {

@@ -23,6 +23,9 @@ pub enum Workload {
     /// and twelve instances of another (256², 16 spp, depth 8): BVH build time, memory per
     /// triangle, rays/s.
     Mesh,
+    /// The first frame `nullpath preview` shows of the default scene: its text parsed, the
+    /// preview's low-resolution frame rendered at 1 spp on all cores and encoded as PNG.
+    Preview,
 }
 
 /// The benchmark scenes, bundled with the binary so the benchmarks run anywhere.
@@ -97,6 +100,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         }
         Workload::Room => room(args),
         Workload::Mesh => mesh_bench(args),
+        Workload::Preview => preview_first_frame(args),
     }
 }
 
@@ -168,6 +172,49 @@ fn mesh_bench(args: &Args) -> Result<(), String> {
         report_text("room with the meshes", &scenes[0], &rows[0]);
         report_text("room without them", &scenes[1], &rows[1]);
         println!("with ÷ without time, all threads: {ratio:.2} (median of {} interleaved pairs)", ratios.len());
+    }
+    Ok(())
+}
+
+/// The time from the default scene's text to the PNG of its first preview frame (`--size` does
+/// not apply: the preview's own low resolution is measured); the fastest and the median of
+/// `--repeat` runs.
+fn preview_first_frame(args: &Args) -> Result<(), String> {
+    if args.size.is_some() {
+        return Err("--size does not apply to bench preview: it measures the preview's own first frame".into());
+    }
+    let cancel = AtomicBool::new(false);
+    let mut times = Vec::new();
+    let mut frame = (0, 0, 0);
+    for _ in 0..args.repeat.max(1) {
+        let start = Instant::now();
+        let scene = super::render::load_scene(None, None)?;
+        let low = super::preview::low_resolution(&scene);
+        let (film, _) = render::renderer::render(&low, &cancel, &|_, _| {});
+        let png = super::preview::encode_png(&film, &low)?;
+        times.push(start.elapsed().as_secs_f64());
+        frame = (film.width(), film.height(), png.len());
+    }
+    let fastest = times.iter().copied().fold(f64::INFINITY, f64::min);
+    let median = median(&times);
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if args.json {
+        println!(
+            "{}",
+            serde_json::json!({ "workload": "preview", "width": frame.0, "height": frame.1, "png_bytes": frame.2,
+                "threads": cores, "fastest_seconds": fastest, "median_seconds": median, "runs": times })
+        );
+    } else {
+        println!(
+            "preview: first frame of the default scene, {}×{} at 1 spp ({} bytes of PNG), {cores} threads: \
+             fastest {:.3} s, median {:.3} s of {}",
+            frame.0,
+            frame.1,
+            frame.2,
+            fastest,
+            median,
+            times.len()
+        );
     }
     Ok(())
 }

@@ -7,6 +7,7 @@ pub mod geodesic;
 pub mod info;
 mod interrupt;
 pub mod merge;
+pub mod preview;
 mod provenance;
 pub mod render;
 

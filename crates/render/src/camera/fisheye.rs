@@ -23,6 +23,11 @@ impl Fisheye {
         Ok(Fisheye { half_fov: 0.5 * fov_deg.to_radians() })
     }
 
+    /// The field of view in degrees, as [`Fisheye::new`] takes it.
+    pub fn fov_degrees(&self) -> f64 {
+        (2.0 * self.half_fov).to_degrees()
+    }
+
     /// The direction through `film`: at distance `r` (as a fraction of the circle's radius) from
     /// the centre and at angle `φ` from the image's right towards its up, the angle
     /// `θ = r · fov/2` from `forward` towards `cos φ · right + sin φ · up`; `None` for `r > 1`.

@@ -28,6 +28,11 @@ impl Ods {
         Ok(Ods { half_ipd: 0.5 * ipd })
     }
 
+    /// The interpupillary distance, as [`Ods::new`] takes it.
+    pub fn ipd(&self) -> f64 {
+        2.0 * self.half_ipd
+    }
+
     /// The ray's start and direction through `film`: the top half of the image (by the
     /// sample's pixel row) is the left eye's panorama, the bottom half the right eye's.
     pub(super) fn ray(&self, position: Vec3, axes: &Axes, film: FilmPoint) -> (Vec3, Vec3) {

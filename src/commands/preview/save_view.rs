@@ -1,0 +1,125 @@
+//! "Save view": writes the preview's camera into the scene file as a `[views.NAME]` table
+//! (docs/scene-format.md), so that `nullpath render --view NAME` renders it. The edit goes through
+//! `toml_edit`, which keeps the rest of the file — comments, order, spacing — as the user wrote
+//! it; the file is written only if the edited text still loads, from the new view.
+
+use super::view::Eye;
+use render::camera::Projection;
+use render::scene::Scene;
+use std::path::Path;
+use toml_edit::{value, Array, DocumentMut, Item, Table};
+
+/// Longest view name.
+const MAX_NAME: usize = 64;
+
+/// Checks a view name: 1 to 64 ASCII letters, digits, `_` or `-` (a bare TOML key).
+pub fn check_name(name: &str) -> Result<(), String> {
+    let bare = name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    if name.is_empty() || name.len() > MAX_NAME || !bare {
+        return Err(format!("a view name is 1 to {MAX_NAME} letters, digits, '_' or '-', got {name:?}"));
+    }
+    Ok(())
+}
+
+/// A number for the file: rounded to 6 significant decimals, so that a pose reads as written.
+fn rounded(x: f64) -> f64 {
+    if x == 0.0 {
+        return 0.0;
+    }
+    let scale = 10f64.powi(5 - x.abs().log10().floor() as i32);
+    let r = (x * scale).round() / scale;
+    if r.is_finite() {
+        r
+    } else {
+        x
+    }
+}
+
+fn vector(v: [f64; 3]) -> Item {
+    value(v.iter().map(|&c| rounded(c)).collect::<Array>())
+}
+
+/// `text` (a scene file) with the view `name` set to `eye`, seen through `scene`'s projection
+/// from the camera's region; an existing view of that name is replaced.
+pub fn with_view(text: &str, name: &str, eye: &Eye, scene: &Scene) -> Result<String, String> {
+    check_name(name)?;
+    let mut doc: DocumentMut = text.parse().map_err(|e| format!("the scene file is not valid TOML: {e}"))?;
+    let views = doc.entry("views").or_insert_with(|| {
+        let mut t = Table::new();
+        t.set_implicit(true);
+        Item::Table(t)
+    });
+    let views = views.as_table_mut().ok_or("the scene's `views` is not a table")?;
+    let mut view = Table::new();
+    view.insert("position", vector(eye.position));
+    view.insert("look_at", vector(eye.look_at));
+    view.insert("up", vector(eye.up));
+    match scene.camera.projection {
+        Projection::Perspective(_) => {
+            view.insert("fov", value(rounded(eye.fov)));
+        }
+        Projection::Equirectangular(_) => {
+            view.insert("projection", value("equirectangular"));
+        }
+        Projection::Fisheye(f) => {
+            view.insert("projection", value("fisheye"));
+            view.insert("fisheye_fov", value(rounded(f.fov_degrees())));
+        }
+        Projection::Ods(o) => {
+            view.insert("projection", value("ods"));
+            view.insert("ipd", value(rounded(o.ipd())));
+        }
+    }
+    if scene.camera.region == spacetime::Region::Lower {
+        view.insert("region", value("lower"));
+    }
+    views.insert(name, Item::Table(view));
+    Ok(doc.to_string())
+}
+
+/// Saves `eye` as the view `name` of the scene file at `path`; the edited file must load from it.
+pub fn save(path: &Path, name: &str, eye: &Eye, scene: &Scene) -> Result<(), String> {
+    let shown = path.display();
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {shown}: {e}"))?;
+    let edited = with_view(&text, name, eye, scene)?;
+    let base = match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir,
+        _ => Path::new("."),
+    };
+    scene::parse_view(&edited, &shown.to_string(), base, Some(name))
+        .map_err(|e| format!("the view would not load, so the file is left as it was: {e}"))?;
+    std::fs::write(path, edited).map_err(|e| format!("cannot write {shown}: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TEXT: &str = "# my room\n[camera]   # where I stand\nposition = [0, 0, 7]\nlook_at = [0, 0, 0]\n\n\
+                        [[objects]]\nshape = { type = \"sphere\", center = [0, 0, 0], radius = 1 }\n";
+
+    fn eye() -> Eye {
+        Eye { position: [1.0, 2.0, 3.0000000001], look_at: [0.0; 3], up: [0.0, 1.0, 0.0], fov: 35.0 }
+    }
+
+    #[test]
+    fn a_view_is_added_and_the_rest_kept() {
+        let scene = scene::parse(TEXT, "t.toml", ".".as_ref()).expect("valid");
+        let edited = with_view(TEXT, "corner", &eye(), &scene).expect("edits");
+        assert!(edited.starts_with(TEXT), "the user's text is kept as written:\n{edited}");
+        assert!(edited.contains("[views.corner]\nposition = [1.0, 2.0, 3.0]\n"), "{edited}");
+        let seen = scene::parse_view(&edited, "t.toml", ".".as_ref(), Some("corner")).expect("loads");
+        assert!((seen.camera.position - render::geometry::Vec3::new(1.0, 2.0, 3.0)).length() < 1e-12);
+        let again = with_view(&edited, "corner", &Eye { fov: 20.0, ..eye() }, &scene).expect("edits");
+        assert_eq!(scene::view_names(&again), ["corner"], "replaced, not added twice");
+        assert!(again.contains("fov = 20.0"), "{again}");
+    }
+
+    #[test]
+    fn bad_names_are_refused() {
+        let scene = scene::parse(TEXT, "t.toml", ".".as_ref()).expect("valid");
+        for name in ["", "a b", "x]\n[camera", "é", &"v".repeat(65)] {
+            assert!(with_view(TEXT, name, &eye(), &scene).is_err(), "{name:?}");
+        }
+    }
+}
