@@ -47,7 +47,7 @@ pub(crate) fn scene<'a>(
 ) -> Result<Scene> {
     let root = Table::root(doc, root, TOP_LEVEL)?;
     let spacetime = match root.get("spacetime") {
-        Some(n) => spacetime_section(&n.tagged("spacetime", SPACETIMES)?)?,
+        Some(n) => spacetime_section(&n.tagged("spacetime", &spacetime_tags())?)?,
         None => (Spacetime::Minkowski(Minkowski), Vec3::Y),
     };
     let (spacetime, axis) = spacetime;
@@ -57,7 +57,7 @@ pub(crate) fn scene<'a>(
         materials: Vec::new(),
         material_names: HashMap::new(),
         default_material: None,
-        two_regions: matches!(spacetime, Spacetime::Ellis(_)),
+        two_regions: spacetime.regions().len() == 2,
     };
     let (cameras, chosen) = camera_tables(doc, &root, view)?;
     let mut rigs = Vec::with_capacity(cameras.len());
@@ -135,41 +135,67 @@ fn camera_tables<'a>(doc: &Doc<'a>, root: &Table<'a>, view: Option<&str>) -> Res
     }
 }
 
-const SPACETIMES: &[(&str, &[&str])] =
-    &[("minkowski", &[]), ("schwarzschild", &["mass"]), ("kerr", &["mass", "spin", "axis"]), ("ellis", &["throat"])];
+/// Reads one spacetime type's parameters from its table.
+type SpacetimeReader = fn(&Table<'_>) -> Result<Spacetime>;
+
+/// The spacetime types of scene files: name, keys besides `type`, and reader.
+const SPACETIMES: &[(&str, &[&str], SpacetimeReader)] = &[
+    ("minkowski", &[], |_| Ok(Spacetime::Minkowski(Minkowski))),
+    ("schwarzschild", &["mass"], schwarzschild),
+    ("kerr", &["mass", "spin", "axis"], kerr),
+    ("ellis", &["throat"], ellis),
+];
 
 /// `[spacetime]`: the metric, validated by the physics crate, and its symmetry axis in the world
 /// (a Kerr hole's spin axis; default `+y`, up).
 fn spacetime_section((kind, t): &(usize, Table<'_>)) -> Result<(Spacetime, Vec3)> {
     let axis = t.or("axis", Vec3::Y, |n| n.direction())?;
-    let mass = || -> Result<f64> {
-        let m = t.req("mass", |n| n.f64())?;
-        if m >= 0.0 {
-            Ok(m)
-        } else {
-            Err(t.loc("mass").err(format!("must be ≥ 0, got {}", num(m))))
-        }
-    };
-    let result = match SPACETIMES[*kind].0 {
-        "minkowski" => return Ok((Spacetime::Minkowski(Minkowski), axis)),
-        "schwarzschild" => Spacetime::schwarzschild(mass()?).map_err(|e| (t.loc("mass"), e)),
-        "kerr" => {
-            let m = mass()?;
-            let spin = t.req("spin", |n| n.f64())?;
-            if spin.abs() > m {
-                return Err(t.loc("spin").err(format!("|spin| must be ≤ mass = {}, got {}", num(m), num(spin))));
-            }
-            Spacetime::kerr(m, spin).map_err(|e| (t.loc("spin"), e))
-        }
-        _ => {
-            let throat = t.req("throat", |n| n.f64())?;
-            if !(throat > 0.0) {
-                return Err(t.loc("throat").err(format!("must be > 0, got {}", num(throat))));
-            }
-            Spacetime::ellis(throat).map_err(|e| (t.loc("throat"), e))
-        }
-    };
-    result.map(|s| (s, axis)).map_err(|(loc, e)| loc.err(e.to_string()))
+    Ok((SPACETIMES[*kind].2(t)?, axis))
+}
+
+/// The types and keys of [`SPACETIMES`], as the reader checks a tagged table against them.
+fn spacetime_tags() -> Vec<(&'static str, &'static [&'static str])> {
+    SPACETIMES.iter().map(|(name, keys, _)| (*name, *keys)).collect()
+}
+
+/// A physics-crate parameter error, at the key it concerns.
+fn checked(
+    t: &Table<'_>,
+    key: &str,
+    s: std::result::Result<Spacetime, spacetime::metric::ParameterError>,
+) -> Result<Spacetime> {
+    s.map_err(|e| t.loc(key).err(e.to_string()))
+}
+
+/// `mass`, required and ≥ 0.
+fn mass(t: &Table<'_>) -> Result<f64> {
+    let m = t.req("mass", |n| n.f64())?;
+    if m >= 0.0 {
+        Ok(m)
+    } else {
+        Err(t.loc("mass").err(format!("must be ≥ 0, got {}", num(m))))
+    }
+}
+
+fn schwarzschild(t: &Table<'_>) -> Result<Spacetime> {
+    checked(t, "mass", Spacetime::schwarzschild(mass(t)?))
+}
+
+fn kerr(t: &Table<'_>) -> Result<Spacetime> {
+    let m = mass(t)?;
+    let spin = t.req("spin", |n| n.f64())?;
+    if spin.abs() > m {
+        return Err(t.loc("spin").err(format!("|spin| must be ≤ mass = {}, got {}", num(m), num(spin))));
+    }
+    checked(t, "spin", Spacetime::kerr(m, spin))
+}
+
+fn ellis(t: &Table<'_>) -> Result<Spacetime> {
+    let throat = t.req("throat", |n| n.f64())?;
+    if !(throat > 0.0) {
+        return Err(t.loc("throat").err(format!("must be > 0, got {}", num(throat))));
+    }
+    checked(t, "throat", Spacetime::ellis(throat))
 }
 
 impl Builder<'_> {

@@ -1,7 +1,8 @@
 //! The closed set of built-in spacetimes, for scene files and the command line, validated on
 //! construction.
 
-use super::{Ellis, Kerr, Metric, Minkowski, Schwarzschild};
+use super::capabilities::{Capabilities, Tracers};
+use super::{Ellis, Kerr, Metric, Minkowski, Region, Schwarzschild};
 
 /// A built-in spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,11 +72,36 @@ impl Spacetime {
 
     /// The metric, for code that needs no more than the [`Metric`] trait.
     pub fn metric(&self) -> &dyn Metric {
+        self.capabilities()
+    }
+
+    /// What the spacetime answers a renderer ([`Capabilities`]): the one place that lists the
+    /// metrics for it.
+    pub fn capabilities(&self) -> &dyn Capabilities {
         match self {
             Spacetime::Minkowski(m) => m,
             Spacetime::Schwarzschild(m) => m,
             Spacetime::Kerr(m) => m,
             Spacetime::Ellis(m) => m,
+        }
+    }
+
+    /// Calls the tracer of `tracers` that fits the metric ([`Capabilities::choose_tracer`]),
+    /// generic over the metric: dispatch once per ray, none per step.
+    pub fn choose_tracer<T: Tracers>(&self, tracers: T) -> T::Output {
+        match self {
+            Spacetime::Minkowski(m) => m.choose_tracer(tracers),
+            Spacetime::Schwarzschild(m) => m.choose_tracer(tracers),
+            Spacetime::Kerr(m) => m.choose_tracer(tracers),
+            Spacetime::Ellis(m) => m.choose_tracer(tracers),
+        }
+    }
+
+    /// The asymptotic regions: a wormhole's two, else the one.
+    pub fn regions(&self) -> &'static [Region] {
+        match self.capabilities().throat() {
+            Some(_) => &[Region::Upper, Region::Lower],
+            None => &[Region::Upper],
         }
     }
 }
