@@ -132,6 +132,23 @@ fn out_of_range_values_point_at_the_value() {
     check(&text, 7, "objects[0].emission", &["≥ 0"]);
 }
 
+/// A camera where no observer can stay at rest is refused at its position, whichever spacetime
+/// makes it so: inside a horizon, inside Kerr's ergoregion (the spin along y, so the equator is
+/// the x–z plane), within a wormhole's throat radius.
+#[test]
+fn cameras_where_nothing_can_stay_at_rest() {
+    let camera = |p: &str| format!("[camera]\nposition = {p}\nlook_at = [5, 3, -10]\nfov = 40\n");
+    let hole = "[spacetime]\ntype = \"schwarzschild\"\nmass = 1\n";
+    check(&format!("{hole}{}", camera("[0, 0, 1.9]")), 5, "camera.position", &["inside the event horizon"]);
+    let kerr = "[spacetime]\ntype = \"kerr\"\nmass = 1\nspin = 0.9\n";
+    check(&format!("{kerr}{}", camera("[1.9, 0, 0]")), 6, "camera.position", &["inside the ergoregion"]);
+    check(&format!("{kerr}{}", camera("[1.2, 0, 0]")), 6, "camera.position", &["inside the event horizon"]);
+    // Above the pole, at the same distance, it is outside the ergoregion.
+    assert!(scene::parse(&format!("{kerr}{}", camera("[0, 1.9, 0]")), "ok.toml", Path::new(".")).is_ok());
+    let wormhole = "[spacetime]\ntype = \"ellis\"\nthroat = 1\n";
+    check(&format!("{wormhole}{}", camera("[0, 0, 0.99]")), 5, "camera.position", &["throat"]);
+}
+
 #[test]
 fn bad_spacetime_parameters() {
     let text = format!("[spacetime]\ntype = \"kerr\"\nmass = 1\nspin = 1.5\n{CAMERA}");

@@ -65,6 +65,7 @@ pub(crate) fn scene<'a>(
         rigs.push(b.camera_rig(t)?);
     }
     let (camera_table, rig) = (&cameras[chosen], rigs.swap_remove(chosen));
+    rig.at_rest(0.0, &spacetime, axis).map_err(|e| camera_table.loc("position").err(e))?;
     let animation_table = root.get("animation").map(|n| n.table(camera::ANIMATION_KEYS)).transpose()?;
     let animation = camera::animation(animation_table.as_ref(), camera_table, rig, &spacetime, axis)?;
     let camera = animation.rig.camera_at(0.0, &spacetime, axis).map_err(|e| camera_table.err(e))?;
