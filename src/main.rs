@@ -3,6 +3,7 @@
 mod commands;
 
 use clap::{Parser, Subcommand};
+use commands::Failure;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -18,6 +19,10 @@ enum Command {
     Render(commands::render::Args),
     /// Render a scene's camera animation to numbered frames (resumable), optionally as a video.
     Animate(commands::animate::Args),
+    /// Put the parts of a split render (`render --part I/N`) together into the image.
+    Merge(commands::merge::Args),
+    /// Print what made an image or checkpoint: scene, settings, seed, samples, version.
+    Info(commands::info::Args),
     /// Trace one ray that comes in from infinity and report its fate and bending angle.
     Geodesic(commands::geodesic::Args),
     /// Measure performance on the standard workloads.
@@ -28,15 +33,17 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => commands::render::run(&args),
-        Command::Animate(args) => commands::animate::run(&args),
-        Command::Geodesic(args) => commands::geodesic::run(&args),
-        Command::Bench(args) => commands::bench::run(&args),
+        Command::Animate(args) => commands::animate::run(&args).map_err(Failure::from),
+        Command::Merge(args) => commands::merge::run(&args).map_err(Failure::from),
+        Command::Info(args) => commands::info::run(&args).map_err(Failure::from),
+        Command::Geodesic(args) => commands::geodesic::run(&args).map_err(Failure::from),
+        Command::Bench(args) => commands::bench::run(&args).map_err(Failure::from),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
+        Err(Failure { message, code }) => {
             eprintln!("nullpath: error: {message}");
-            ExitCode::FAILURE
+            ExitCode::from(code)
         }
     }
 }

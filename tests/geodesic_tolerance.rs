@@ -29,7 +29,7 @@ fn camera_rays(scene: &Scene) -> Vec<Start> {
     (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| {
-            let r = scene.camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5, width, height, [0.5, 0.5]);
+            let r = scene.camera.ray([x, y], [0.0; 2], [width, height], [0.5, 0.5]).unwrap();
             (r.origin, r.direction)
         })
         .collect()

@@ -4,9 +4,12 @@
 //! Frame `n` is exactly the still `nullpath render --time n/fps` (same seed, same pixels), so a
 //! frame can be re-rendered or checked on its own.
 
-use super::render::{cancel_on_interrupt, summary, RenderOptions};
+use super::interrupt::Interrupts;
+use super::provenance;
+use super::render::{summary, RenderOptions};
 use clap::{Parser, ValueEnum};
 use render::film::write_image;
+use render::renderer::{Goal, Part};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -99,7 +102,7 @@ pub fn run(args: &Args) -> Result<(), String> {
     std::fs::create_dir_all(&args.output)
         .map_err(|e| format!("{}: cannot create the frame directory: {e}", args.output.display()))?;
     let pool = args.options.thread_pool()?;
-    let cancel = cancel_on_interrupt()?;
+    let interrupts = Interrupts::install()?;
     let (width, height) = (scene.settings.width, scene.settings.height);
     let mut rendered = 0;
     for n in frames.clone() {
@@ -109,18 +112,20 @@ pub fn run(args: &Args) -> Result<(), String> {
         }
         let time = animation.time(n);
         scene.set_time(time)?;
-        let (film, stats) = args.options.render(&scene, &pool, &cancel);
-        if cancel.load(Ordering::Relaxed) || stats.tiles_done < stats.tiles_total {
+        let (film, stats) = args.options.render(&scene, &pool, &interrupts.cancel);
+        let source = args.options.source(Some(&args.scene), time);
+        let metadata = provenance::metadata(&scene, &source, Goal::spp(scene.settings.spp), Part::WHOLE, &stats);
+        if interrupts.cancel.load(Ordering::Relaxed) || !stats.is_complete() {
             // Keep what was computed, under a name a later run does not take for a finished frame.
             let partial = path.with_extension(format!("partial.{}", args.format.extension()));
-            write_image(&film, &partial, &scene.settings.tonemap).map_err(|e| e.to_string())?;
+            write_image(&film, &partial, &scene.settings.tonemap, &metadata).map_err(|e| e.to_string())?;
             return Err(format!(
-                "interrupted in frame {n}, after {rendered} new frames; its finished tiles are in {}. \
+                "interrupted in frame {n}, after {rendered} new frames; what it had is in {}. \
                  Run the same command again to render the missing frames.",
                 partial.display()
             ));
         }
-        write_image(&film, &path, &scene.settings.tonemap).map_err(|e| e.to_string())?;
+        write_image(&film, &path, &scene.settings.tonemap, &metadata).map_err(|e| e.to_string())?;
         rendered += 1;
         if !args.options.quiet {
             eprintln!("frame {n} (t = {time:.4} s): {}", summary(&stats, &scene));

@@ -1,24 +1,45 @@
-//! `nullpath render`: render a scene file (or the default scene) to PNG or EXR.
+//! `nullpath render`: render a scene file (or the default scene) to PNG, EXR or HDR,
+//! progressively, with checkpoints, resumption, noise targets and parts of an image.
 
+use super::interrupt::{Interrupts, StopReason};
+use super::provenance::{self, Source};
+use super::Failure;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
-use render::film::{check_output_path, write_image, Film};
-use render::renderer::{render, RenderStats};
+use render::film::{check_output_path, check_writable, read_checkpoint, write_checkpoint, write_image, Film};
+use render::film::{ImageFormat, Metadata};
+use render::renderer::{render, Goal, NoiseTarget, Outcome, Part, RenderStats, Renderer, Resume};
 use render::scene::Scene;
+use render::settings::IntegratorKind;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+use std::sync::{Condvar, Mutex};
+use std::time::{Duration, Instant};
 
 /// The scene rendered when none is named.
 pub const DEFAULT_SCENE: &str = include_str!("../../scenes/room-black-hole.toml");
 pub const DEFAULT_SCENE_NAME: &str = "<default scene: scenes/room-black-hole.toml>";
 
+/// Largest image side, in pixels.
+const MAX_SIDE: u32 = 16384;
+/// Most samples per pixel one command asks for.
+const MAX_SPP: u32 = 1 << 20;
+/// Most worker threads.
+const MAX_THREADS: usize = 1024;
+/// Memory a checkpoint's encoding needs, beyond the film, per pixel: its `u32` and `f32`
+/// channels (see `render::film::write_checkpoint`).
+const CHECKPOINT_BYTES_PER_PIXEL: u64 = 4 * (3 + 2 * 6 + 3);
+
 #[derive(Parser, Debug)]
+#[command(after_help = "Flags override the scene file's values. Scenes: see docs/scene-format.md.\n\
+    An interrupted render (Ctrl-C, SIGTERM, SIGHUP, --time-limit) keeps its work in a checkpoint \
+    and leaves the output untouched; a second Ctrl-C quits at once.")]
 pub struct Args {
-    /// Scene file (TOML); the default scene when omitted.
+    /// Scene file (TOML); the default scene (scenes/room-black-hole.toml, built in) when omitted.
     scene: Option<PathBuf>,
-    /// Output image: .png (8-bit sRGB, tone mapped), .exr (linear float) or .hdr.
+    /// Output image: .png (8-bit sRGB, tone mapped), .exr (linear float) or .hdr. With --part,
+    /// the part file (.exr) that `nullpath merge` puts together.
     #[arg(short, long, default_value = "render.png")]
     output: PathBuf,
     /// Animation time (seconds) to render the camera at; frame N of `nullpath animate` is
@@ -27,32 +48,102 @@ pub struct Args {
     time: f64,
     #[command(flatten)]
     options: RenderOptions,
-    /// Write statistics (rays, samples, seconds, NaN samples, ray fates) as JSON here.
-    #[arg(long)]
+    /// Write statistics (rays, samples, seconds, NaN samples, ray fates, spp reached, estimated
+    /// error) as JSON here.
+    #[arg(long, value_name = "PATH")]
     stats: Option<PathBuf>,
+    /// Keep the render's state in this checkpoint (.exr): written every --checkpoint-every, when
+    /// interrupted, and at the end (to continue later to more samples). Without it, an
+    /// interrupted render writes OUTPUT's name with .checkpoint.exr.
+    #[arg(long, value_name = "PATH")]
+    checkpoint: Option<PathBuf>,
+    /// How often to write the checkpoint, e.g. 10s, 5m, 1h (default 5m with --checkpoint).
+    #[arg(long, value_name = "DURATION", value_parser = parse_duration)]
+    checkpoint_every: Option<Duration>,
+    /// Continue the render saved in this checkpoint (to --spp samples, or the scene's). The
+    /// scene, view, time and settings must be those it was made with.
+    #[arg(long, value_name = "PATH")]
+    resume: Option<PathBuf>,
+    /// Stop after this long (e.g. 90s, 30m, 2h, 1h30m), keeping the work in the checkpoint to
+    /// continue with --resume; exits with status 75.
+    #[arg(long, value_name = "DURATION", value_parser = parse_duration)]
+    time_limit: Option<Duration>,
+    /// Stop when the estimated relative error of the image (per pixel, from the variance of
+    /// its samples) is at most this, e.g. 0.02; --spp (default 65536) is then the most a pixel
+    /// takes.
+    #[arg(long, value_name = "ERROR")]
+    noise_target: Option<f64>,
+    /// With --noise-target: send samples only to the pixels that still need them.
+    #[arg(long, requires = "noise_target")]
+    adaptive: bool,
+    /// Render part I of N of the image (by tiles, I from 1 to N) into the part file OUTPUT
+    /// (.exr); `nullpath merge` puts the parts together, bit-identical to one render.
+    #[arg(long, value_name = "I/N", value_parser = Part::parse)]
+    part: Option<Part>,
 }
 
-/// Options shared by the commands that render: view, image size, sampling, threads, reporting.
+/// `90s`, `30m`, `2h`, `1h30m` or plain seconds.
+fn parse_duration(text: &str) -> Result<Duration, String> {
+    let duration = match text.trim().parse::<f64>() {
+        Ok(seconds) if seconds.is_finite() && seconds >= 0.0 => Duration::from_secs_f64(seconds),
+        Ok(_) => return Err(format!("\"{text}\" is not a duration")),
+        Err(_) => humantime::parse_duration(text)
+            .map_err(|e| format!("\"{text}\" is not a duration ({e}): write e.g. 90s, 30m, 2h"))?,
+    };
+    if duration.is_zero() {
+        return Err("a duration must be longer than zero".into());
+    }
+    Ok(duration)
+}
+
+/// Options shared by the commands that render: view, image size, sampling, threads, memory,
+/// reporting. Each overrides the scene file's value.
 #[derive(clap::Args, Debug)]
 pub struct RenderOptions {
     /// Render from the scene's view NAME (its `[views.NAME]` camera) instead of its `[camera]`.
     #[arg(long, value_name = "NAME")]
     view: Option<String>,
+    /// Image width in pixels (1 to 16384; default: the scene's `[render] width`).
     #[arg(long)]
     width: Option<u32>,
+    /// Image height in pixels (1 to 16384; default: the scene's `[render] height`).
     #[arg(long)]
     height: Option<u32>,
-    /// Samples per pixel.
+    /// Samples per pixel (photon-mapping iterations; default: the scene's `[render] spp`).
     #[arg(long)]
     spp: Option<u32>,
+    /// Seed of the random numbers (default: the scene's `[render] seed`, else 0).
     #[arg(long)]
     seed: Option<u64>,
-    /// Worker threads (default: all cores). The image does not depend on it.
+    /// Worker threads, 1 to 1024 (default: all cores). The image does not depend on it.
     #[arg(long)]
     threads: Option<usize>,
+    /// Most memory the render may use, e.g. 8G or 512M (default: the memory available now).
+    /// Checked before rendering, from the image size.
+    #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
+    max_memory: Option<u64>,
     /// No progress bar or summary.
     #[arg(long)]
     pub quiet: bool,
+}
+
+/// `8G`, `512M`, `100k` or plain bytes (binary multiples).
+fn parse_bytes(text: &str) -> Result<u64, String> {
+    let t = text.trim();
+    let (number, unit) = t.split_at(t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len()));
+    let scale: u64 = match unit.to_ascii_lowercase().trim_end_matches("ib").trim_end_matches('b') {
+        "" => 1,
+        "k" => 1 << 10,
+        "m" => 1 << 20,
+        "g" => 1 << 30,
+        "t" => 1 << 40,
+        _ => return Err(format!("\"{text}\" is not a size: write e.g. 8G or 512M")),
+    };
+    let value: f64 = number.trim().parse().map_err(|_| format!("\"{text}\" is not a size: write e.g. 8G or 512M"))?;
+    if !(value.is_finite() && value > 0.0) {
+        return Err(format!("\"{text}\" is not a size: write e.g. 8G or 512M"));
+    }
+    Ok((value * scale as f64) as u64)
 }
 
 /// Loads the named scene or the default one, from its `[camera]` or the view `view`.
@@ -71,6 +162,15 @@ impl RenderOptions {
         Ok(scene)
     }
 
+    /// Where the scene came from, at animation time `time`.
+    pub(super) fn source(&self, path: Option<&Path>, time: f64) -> Source {
+        let (name, text) = match path {
+            Some(p) => (p.display().to_string(), std::fs::read_to_string(p).unwrap_or_default()),
+            None => (DEFAULT_SCENE_NAME.to_owned(), DEFAULT_SCENE.to_owned()),
+        };
+        Source { name, text, view: self.view.clone(), time }
+    }
+
     /// Applies the command-line overrides to the scene's settings.
     fn apply(&self, scene: &mut Scene) -> Result<(), String> {
         let s = &mut scene.settings;
@@ -79,13 +179,13 @@ impl RenderOptions {
             Some(v) if v > max => Err(format!("--{name} {v} is larger than {max}")),
             other => Ok(other),
         };
-        if let Some(w) = positive("width", self.width, 16384)? {
+        if let Some(w) = positive("width", self.width, MAX_SIDE)? {
             s.width = w;
         }
-        if let Some(h) = positive("height", self.height, 16384)? {
+        if let Some(h) = positive("height", self.height, MAX_SIDE)? {
             s.height = h;
         }
-        if let Some(n) = positive("spp", self.spp, 1 << 20)? {
+        if let Some(n) = positive("spp", self.spp, MAX_SPP)? {
             s.spp = n;
         }
         if let Some(seed) = self.seed {
@@ -95,30 +195,59 @@ impl RenderOptions {
     }
 
     pub fn thread_pool(&self) -> Result<rayon::ThreadPool, String> {
+        if let Some(n) = self.threads.filter(|n| !(1..=MAX_THREADS).contains(n)) {
+            return Err(format!("--threads must be between 1 and {MAX_THREADS}, got {n}"));
+        }
         rayon::ThreadPoolBuilder::new()
             .num_threads(self.threads.unwrap_or(0))
             .build()
             .map_err(|e| format!("--threads: {e}"))
     }
 
-    /// Renders `scene` on `pool` with a progress bar (on a terminal, unless quiet); setting
-    /// `cancel` stops it between tiles.
-    pub fn render(&self, scene: &Scene, pool: &rayon::ThreadPool, cancel: &AtomicBool) -> (Film, RenderStats) {
-        let bar = (!self.quiet && std::io::stderr().is_terminal()).then(|| {
+    /// Refuses a render whose film (and, with `checkpoints`, its checkpoint encoding) would not
+    /// fit in `--max-memory`, or in the memory available now.
+    pub fn check_memory(&self, scene: &Scene, checkpoints: bool) -> Result<(), String> {
+        let pixels = u64::from(scene.settings.width) * u64::from(scene.settings.height);
+        let per_pixel = Film::BYTES_PER_PIXEL + 4 + 3 + if checkpoints { CHECKPOINT_BYTES_PER_PIXEL } else { 0 };
+        let needed = pixels * per_pixel;
+        let (limit, what) = match self.max_memory {
+            Some(limit) => (limit, "--max-memory"),
+            None => match available_memory() {
+                Some(available) => (available, "the memory available"),
+                None => return Ok(()),
+            },
+        };
+        if needed > limit {
+            let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
+            return Err(format!(
+                "a {}x{} render needs about {:.1} GiB ({per_pixel} bytes a pixel), more than {what} ({:.1} GiB): \
+                 render a smaller image, or raise --max-memory if more memory will be free",
+                scene.settings.width,
+                scene.settings.height,
+                gib(needed),
+                gib(limit)
+            ));
+        }
+        Ok(())
+    }
+
+    /// A progress bar on a terminal, unless quiet.
+    fn progress_bar(&self) -> Option<ProgressBar> {
+        (!self.quiet && std::io::stderr().is_terminal()).then(|| {
             let bar = ProgressBar::new(1);
             bar.set_style(
                 ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta}")
                     .unwrap_or_else(|_| ProgressStyle::default_bar()),
             );
             bar
-        });
-        let progress = |done: u64, total: u64| {
-            if let Some(bar) = &bar {
-                bar.set_length(total);
-                bar.set_position(done);
-            }
-        };
-        let result = pool.install(|| render(scene, cancel, &progress));
+        })
+    }
+
+    /// Renders `scene` on `pool` with a progress bar (on a terminal, unless quiet); setting
+    /// `cancel` stops it within a sample.
+    pub fn render(&self, scene: &Scene, pool: &rayon::ThreadPool, cancel: &AtomicBool) -> (Film, RenderStats) {
+        let bar = self.progress_bar();
+        let result = pool.install(|| render(scene, cancel, &|done, total| show(&bar, done, total)));
         if let Some(bar) = &bar {
             bar.finish_and_clear();
         }
@@ -126,14 +255,19 @@ impl RenderOptions {
     }
 }
 
-/// A flag that Ctrl-C sets; renders poll it between tiles.
-pub fn cancel_on_interrupt() -> Result<Arc<AtomicBool>, String> {
-    let cancel = Arc::new(AtomicBool::new(false));
-    let flag = Arc::clone(&cancel);
-    // A second Ctrl-C while the image is being written kills the process as usual.
-    ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))
-        .map_err(|e| format!("cannot handle Ctrl-C: {e}"))?;
-    Ok(cancel)
+fn show(bar: &Option<ProgressBar>, done: u64, total: u64) {
+    if let Some(bar) = bar {
+        bar.set_length(total);
+        bar.set_position(done);
+    }
+}
+
+/// `MemAvailable` of `/proc/meminfo`, where there is one.
+fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }
 
 /// Statistics as the JSON object `--stats` writes.
@@ -151,20 +285,31 @@ pub fn stats_json(stats: &RenderStats, scene: &Scene) -> serde_json::Value {
         "width": scene.settings.width,
         "height": scene.settings.height,
         "spp": scene.settings.spp,
-        "tiles_done": stats.tiles_done,
-        "tiles_total": stats.tiles_total,
-        "complete": stats.tiles_done == stats.tiles_total,
+        "spp_min": stats.spp_min,
+        "spp_max": stats.spp_max,
+        "relative_error": stats.relative_error,
+        "outcome": match stats.outcome {
+            Outcome::Finished => "finished",
+            Outcome::Converged => "converged",
+            Outcome::Interrupted => "interrupted",
+        },
+        "complete": stats.is_complete(),
     })
 }
 
 /// One line on a finished render: size, samples, time, ray fates.
 pub fn summary(stats: &RenderStats, scene: &Scene) -> String {
     let f = &stats.paths.fates;
+    let spp = if stats.spp_min == stats.spp_max {
+        format!("{} spp", stats.spp_max)
+    } else {
+        format!("{}–{} spp", stats.spp_min, stats.spp_max)
+    };
+    let error = stats.relative_error.map_or(String::new(), |e| format!(", estimated relative error {e:.4}"));
     format!(
-        "{}×{} at {} spp in {:.2} s ({:.0} samples/s); rays escaped {}, captured {}, absorbed {}, traversed {}, failed {}; NaN samples {}",
+        "{}×{} at {spp} in {:.2} s ({:.0} samples/s{error}); rays escaped {}, captured {}, absorbed {}, traversed {}, failed {}; NaN samples {}",
         scene.settings.width,
         scene.settings.height,
-        scene.settings.spp,
         stats.seconds,
         stats.samples as f64 / stats.seconds.max(1e-9),
         f.escaped,
@@ -176,34 +321,281 @@ pub fn summary(stats: &RenderStats, scene: &Scene) -> String {
     )
 }
 
-pub fn run(args: &Args) -> Result<(), String> {
-    let mut scene = args.options.load(args.scene.as_deref())?;
-    if !args.time.is_finite() {
-        return Err(format!("--time must be a finite number of seconds, got {}", args.time));
+/// `path` with its extension replaced by `.checkpoint.exr`: where an interrupted render without
+/// `--checkpoint` keeps its work.
+fn default_checkpoint(output: &Path) -> PathBuf {
+    output.with_extension("checkpoint.exr")
+}
+
+/// Checks that `path` can be written as `what`, before anything is rendered.
+fn check_path(path: &Path, what: &str, exr_only: bool) -> Result<(), String> {
+    let format = check_output_path(path).map_err(|e| format!("{what}: {e}"))?;
+    if exr_only && format != ImageFormat::Exr {
+        return Err(format!("{what} '{}' must be an .exr file", path.display()));
     }
-    scene.set_time(args.time)?;
-    check_output_path(&args.output).map_err(|e| e.to_string())?;
-    let pool = args.options.thread_pool()?;
-    let cancel = cancel_on_interrupt()?;
-    let (film, stats) = args.options.render(&scene, &pool, &cancel);
-    write_image(&film, &args.output, &scene.settings.tonemap).map_err(|e| e.to_string())?;
-    if let Some(path) = &args.stats {
-        let text = serde_json::to_string_pretty(&stats_json(&stats, &scene)).map_err(|e| e.to_string())?;
-        std::fs::write(path, text + "\n").map_err(|e| format!("{}: cannot write statistics: {e}", path.display()))?;
-    }
-    let interrupted = stats.tiles_done < stats.tiles_total;
-    if !args.options.quiet {
-        let verb = if interrupted { "interrupted: wrote the finished part of" } else { "wrote" };
-        eprintln!("{verb} {}", summary(&stats, &scene));
-        eprintln!("image: {}", args.output.display());
-    }
-    if interrupted {
-        return Err(format!(
-            "interrupted after {} of {} tiles; the finished tiles are in {}",
-            stats.tiles_done,
-            stats.tiles_total,
-            args.output.display()
-        ));
+    check_writable(path).map_err(|e| format!("{what}: {e}"))
+}
+
+fn check_stats_path(path: &Path) -> Result<(), String> {
+    let error = |e: std::io::Error| format!("--stats '{}': cannot write: {e}", path.display());
+    // Appending creates the file if needed without truncating an existing one.
+    let existed = path.exists();
+    std::fs::OpenOptions::new().append(true).create(true).open(path).map_err(error)?;
+    if !existed {
+        std::fs::remove_file(path).map_err(error)?;
     }
     Ok(())
+}
+
+fn write_stats(path: &Path, stats: &RenderStats, scene: &Scene) -> Result<(), String> {
+    let text = serde_json::to_string_pretty(&stats_json(stats, scene)).map_err(|e| e.to_string())?;
+    std::fs::write(path, text + "\n").map_err(|e| format!("{}: cannot write statistics: {e}", path.display()))
+}
+
+impl Args {
+    /// The render's goal, validated.
+    fn goal(&self, scene: &Scene) -> Result<Goal, String> {
+        let Some(error) = self.noise_target else { return Ok(Goal::spp(scene.settings.spp)) };
+        if !(error > 0.0 && error < 1.0) {
+            return Err(format!("--noise-target must be a relative error between 0 and 1 (e.g. 0.02), got {error}"));
+        }
+        let spp = self.options.spp.unwrap_or(1 << 16);
+        Ok(Goal { spp, noise: Some(NoiseTarget { relative_error: error, adaptive: self.adaptive }) })
+    }
+
+    fn checkpoint_path(&self) -> PathBuf {
+        self.checkpoint.clone().unwrap_or_else(|| default_checkpoint(&self.output))
+    }
+}
+
+pub fn run(args: &Args) -> Result<(), Failure> {
+    let mut scene = args.options.load(args.scene.as_deref())?;
+    if !args.time.is_finite() {
+        return Err(format!("--time must be a finite number of seconds, got {}", args.time).into());
+    }
+    scene.set_time(args.time)?;
+    let source = args.options.source(args.scene.as_deref(), args.time);
+    let part = args.part.unwrap_or(Part::WHOLE);
+    let goal = args.goal(&scene)?;
+    if scene.settings.integrator == IntegratorKind::Photon {
+        return run_photon(args, &scene);
+    }
+    if part != Part::WHOLE && goal.noise.is_some() {
+        return Err("--noise-target decides from the whole image, so it cannot be used with --part".to_owned().into());
+    }
+    check_path(&args.output, "output", args.part.is_some())?;
+    check_path(&args.checkpoint_path(), "--checkpoint", true)?;
+    if let Some(path) = &args.stats {
+        check_stats_path(path)?;
+    }
+    let pool = args.options.thread_pool()?;
+    args.options.check_memory(&scene, true)?;
+    let resume = args.resume.as_deref().map(|path| resume_from(path, &scene, &source, goal, part)).transpose()?;
+    let interrupts = Interrupts::install()?;
+    let renderer = Renderer::new(&scene, part, resume).map_err(|e| e.to_string())?;
+
+    let metadata = |stats: &RenderStats| provenance::metadata(&scene, &source, goal, part, stats);
+    let checkpoint = args.checkpoint_path();
+    let save = |film: &Film, targets: &[u32], stats: &RenderStats| {
+        write_checkpoint(&checkpoint, film, targets, &metadata(stats)).map_err(|e| format!("checkpoint: {e}"))
+    };
+    let stats = run_with_checkpoints(args, &renderer, &pool, goal, &interrupts, &save);
+    let (film, targets, _) = renderer.into_state();
+
+    if let Some(reason) = interrupts.reason().filter(|_| !stats.is_complete()) {
+        return interrupted(args, &scene, &stats, reason, save(&film, &targets, &stats));
+    }
+    if args.part.is_none() {
+        write_image(&film, &args.output, &scene.settings.tonemap, &metadata(&stats)).map_err(|e| e.to_string())?;
+    } else {
+        write_checkpoint(&args.output, &film, &targets, &metadata(&stats)).map_err(|e| e.to_string())?;
+    }
+    if args.checkpoint.is_some() {
+        save(&film, &targets, &stats)?;
+    } else if args.resume.as_deref() == Some(checkpoint.as_path()) {
+        // The work is in the image now; the checkpoint an interruption left is done with.
+        let _ = std::fs::remove_file(&checkpoint);
+    }
+    if let Some(path) = &args.stats {
+        write_stats(path, &stats, &scene)?;
+    }
+    if !args.options.quiet {
+        eprintln!("wrote {}", summary(&stats, &scene));
+        eprintln!("{}: {}", if args.part.is_none() { "image" } else { "part" }, args.output.display());
+    }
+    Ok(())
+}
+
+/// The checkpoint at `path`, if the render described by `scene`, `source`, `goal` and `part`
+/// continues it.
+fn resume_from(path: &Path, scene: &Scene, source: &Source, goal: Goal, part: Part) -> Result<Resume, String> {
+    let checkpoint = read_checkpoint(path).map_err(|e| format!("--resume: {e}"))?;
+    let refuse = |why: String| format!("--resume {}: cannot continue this render: {why}", path.display());
+    let now = provenance::metadata(scene, source, goal, part, &RenderStats::default());
+    provenance::check_resumable(&checkpoint.metadata, &now).map_err(refuse)?;
+    let (width, height) = (checkpoint.film.width(), checkpoint.film.height());
+    if (width, height) != (scene.settings.width, scene.settings.height) {
+        return Err(refuse(format!("it is {width}x{height}")));
+    }
+    let reached = checkpoint.film.bounds().pixels().map(|(x, y)| checkpoint.film.taken_at(x, y)).max().unwrap_or(0);
+    if reached > goal.spp {
+        return Err(refuse(format!(
+            "it already has {reached} samples per pixel, more than the {} asked for",
+            goal.spp
+        )));
+    }
+    let (paths, seconds) = provenance::recorded_work(&checkpoint.metadata);
+    Ok(Resume { film: checkpoint.film, targets: checkpoint.targets, paths, seconds })
+}
+
+/// Writes a checkpoint of a film, its pass targets and what the render did so far.
+type SaveCheckpoint<'a> = dyn Fn(&Film, &[u32], &RenderStats) -> Result<(), String> + Sync + 'a;
+
+/// Runs `renderer` to `goal` on `pool`, writing checkpoints every `--checkpoint-every` from a
+/// second thread and stopping it at `--time-limit`.
+fn run_with_checkpoints(
+    args: &Args,
+    renderer: &Renderer<'_>,
+    pool: &rayon::ThreadPool,
+    goal: Goal,
+    interrupts: &Interrupts,
+    save: &SaveCheckpoint<'_>,
+) -> RenderStats {
+    let every = args.checkpoint_every.or(args.checkpoint.as_ref().map(|_| Duration::from_secs(300)));
+    let start = Instant::now();
+    let deadline = args.time_limit.map(|limit| start + limit);
+    let finished = (Mutex::new(false), Condvar::new());
+    let bar = args.options.progress_bar();
+    std::thread::scope(|scope| {
+        scope.spawn(|| {
+            let mut next_checkpoint = every.map(|e| start + e);
+            let (lock, wake) = &finished;
+            let mut done = lock.lock().unwrap_or_else(|e| e.into_inner());
+            while !*done {
+                let now = Instant::now();
+                if deadline.is_some_and(|d| now >= d) {
+                    interrupts.stop_for_time_limit();
+                }
+                if let (Some(at), Some(every)) = (next_checkpoint, every) {
+                    if now >= at {
+                        let (film, targets, stats) = renderer.snapshot();
+                        if let Err(e) = save(&film, &targets, &stats) {
+                            eprintln!("nullpath: warning: {e}");
+                        }
+                        next_checkpoint = Some(Instant::now() + every);
+                    }
+                }
+                let wait =
+                    [next_checkpoint, deadline].into_iter().flatten().min().map_or(Duration::from_secs(3600), |t| {
+                        t.saturating_duration_since(Instant::now()).max(Duration::from_millis(1))
+                    });
+                done = wake.wait_timeout(done, wait).map(|(d, _)| d).unwrap_or_else(|e| e.into_inner().0);
+            }
+        });
+        let stats = pool.install(|| renderer.run(goal, &interrupts.cancel, &|done, total| show(&bar, done, total)));
+        if let Some(bar) = &bar {
+            bar.finish_and_clear();
+        }
+        *finished.0.lock().unwrap_or_else(|e| e.into_inner()) = true;
+        finished.1.notify_all();
+        stats
+    })
+}
+
+/// Reports an interrupted render whose checkpoint was (or failed to be) saved.
+fn interrupted(
+    args: &Args,
+    scene: &Scene,
+    stats: &RenderStats,
+    reason: StopReason,
+    saved: Result<(), String>,
+) -> Result<(), Failure> {
+    saved?;
+    if let Some(path) = &args.stats {
+        write_stats(path, stats, scene)?;
+    }
+    let checkpoint = args.checkpoint_path();
+    let spp = if stats.spp_min == stats.spp_max {
+        stats.spp_max.to_string()
+    } else {
+        format!("{}–{}", stats.spp_min, stats.spp_max)
+    };
+    Err(Failure {
+        message: format!(
+            "{reason} at {spp} samples per pixel; the work is in {} ({} was not touched). \
+             Continue with the same command and --resume {}",
+            checkpoint.display(),
+            args.output.display(),
+            checkpoint.display()
+        ),
+        code: reason.exit_code(),
+    })
+}
+
+/// Photon mapping renders by iterations of its own, without checkpoints or parts (yet).
+fn run_photon(args: &Args, scene: &Scene) -> Result<(), Failure> {
+    let refused = [
+        (args.checkpoint.is_some(), "--checkpoint"),
+        (args.resume.is_some(), "--resume"),
+        (args.part.is_some(), "--part"),
+        (args.noise_target.is_some(), "--noise-target"),
+        (args.time_limit.is_some(), "--time-limit"),
+    ];
+    if let Some((_, flag)) = refused.iter().find(|(given, _)| *given) {
+        return Err(format!("{flag} is not available with integrator = \"photon\" yet").into());
+    }
+    check_path(&args.output, "output", false)?;
+    if let Some(path) = &args.stats {
+        check_stats_path(path)?;
+    }
+    let pool = args.options.thread_pool()?;
+    args.options.check_memory(scene, false)?;
+    let interrupts = Interrupts::install()?;
+    let (film, stats) = args.options.render(scene, &pool, &interrupts.cancel);
+    let source = args.options.source(args.scene.as_deref(), args.time);
+    let metadata: Metadata = provenance::metadata(scene, &source, Goal::spp(scene.settings.spp), Part::WHOLE, &stats);
+    // A partial result never replaces a complete one: it goes beside the output.
+    let output = if stats.is_complete() { args.output.clone() } else { args.output.with_extension("partial.exr") };
+    write_image(&film, &output, &scene.settings.tonemap, &metadata).map_err(|e| e.to_string())?;
+    if let Some(path) = &args.stats {
+        write_stats(path, &stats, scene)?;
+    }
+    if let Some(reason) = interrupts.reason().filter(|_| !stats.is_complete()) {
+        return Err(Failure {
+            message: format!(
+                "{reason} after {} of {} iterations; the image so far is in {} ({} was not touched)",
+                stats.spp_max,
+                scene.settings.spp,
+                output.display(),
+                args.output.display()
+            ),
+            code: reason.exit_code(),
+        });
+    }
+    if !args.options.quiet {
+        eprintln!("wrote {}", summary(&stats, scene));
+        eprintln!("image: {}", output.display());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn durations_and_sizes() {
+        assert_eq!(parse_duration("90s"), Ok(Duration::from_secs(90)));
+        assert_eq!(parse_duration("1h30m"), Ok(Duration::from_secs(5400)));
+        assert_eq!(parse_duration("2.5"), Ok(Duration::from_millis(2500)));
+        assert!(parse_duration("0").is_err());
+        assert!(parse_duration("soon").is_err());
+        assert!(parse_duration("-3").is_err());
+        assert_eq!(parse_bytes("8G"), Ok(8 << 30));
+        assert_eq!(parse_bytes("512MiB"), Ok(512 << 20));
+        assert_eq!(parse_bytes("1000"), Ok(1000));
+        assert!(parse_bytes("lots").is_err());
+        assert!(parse_bytes("0").is_err());
+        assert_eq!(default_checkpoint(Path::new("out/render.png")), Path::new("out/render.checkpoint.exr"));
+    }
 }

@@ -6,7 +6,7 @@
 //! orientations are slerped between keys; field of view and focus distance are linear. Before
 //! the first key and after the last the camera holds still.
 
-use crate::camera::Camera;
+use crate::camera::{Camera, Perspective, Projection};
 use crate::geometry::Vec3;
 use crate::propagator::chart_rotation;
 use glam::DQuat;
@@ -57,12 +57,14 @@ pub enum Observer {
     FromPath { speed_of_light: f64 },
 }
 
-/// Everything that makes the camera of a frame: its path, lens, region and state of motion.
+/// Everything that makes the camera of a frame: its path, projection, region and state of motion.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CameraRig {
     pub region: Region,
     pub path: CameraPath,
-    pub lens_radius: f64,
+    /// The projection; a perspective one takes its field of view and focus distance from each
+    /// pose (its lens radius is the rig's), the others are the same at every pose.
+    pub projection: Projection,
     pub observer: Observer,
 }
 
@@ -177,15 +179,13 @@ impl CameraRig {
         let at = |e: String| format!("camera at t = {time} s: {e}");
         self.at_rest(time, spacetime, axis).map_err(at)?;
         let pose = self.path.pose(time);
-        let camera = Camera::oriented(
-            self.region,
-            pose.position,
-            pose.orientation,
-            pose.fov,
-            self.lens_radius,
-            pose.focus_distance,
-        )
-        .map_err(at)?;
+        let projection = match self.projection {
+            Projection::Perspective(lens) => {
+                Projection::Perspective(Perspective::new(pose.fov, lens.lens_radius, pose.focus_distance).map_err(at)?)
+            }
+            Projection::Equirectangular(_) | Projection::Fisheye(_) | Projection::Ods(_) => self.projection,
+        };
+        let camera = Camera::oriented(self.region, pose.position, pose.orientation, projection).map_err(at)?;
         let velocity = match self.observer {
             Observer::Static => Vec3::ZERO,
             Observer::Velocity(v) => v,
@@ -283,14 +283,15 @@ mod tests {
                 key(1.0, Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO),
             ])
             .unwrap(),
-            lens_radius: 0.0,
+            projection: Projection::Perspective(Perspective::new(40.0, 0.0, 1.0).unwrap()),
             observer,
         };
         let flat = Spacetime::Minkowski(spacetime::Minkowski);
         // Two keys: the spline is the straight line at 6 units/s; with c = 12 units/s, 0.5 c.
         let moving = rig(Observer::FromPath { speed_of_light: 12.0 }).camera_at(0.5, &flat, Vec3::Y).unwrap();
         let fixed = rig(Observer::Velocity(Vec3::new(0.0, 0.0, -0.5))).camera_at(0.5, &flat, Vec3::Y).unwrap();
-        let (a, b) = (moving.ray(3.0, 4.0, 10, 10, [0.5; 2]), fixed.ray(3.0, 4.0, 10, 10, [0.5; 2]));
+        let ray = |c: Camera| c.ray([3, 4], [0.0; 2], [10, 10], [0.5; 2]).unwrap();
+        let (a, b) = (ray(moving), ray(fixed));
         // Equal up to the finite-difference Jacobian of the world → chart map (~1e-11).
         assert!((a.direction - b.direction).length() < 1e-9 && (a.weight / b.weight - 1.0).abs() < 1e-6);
         let err = rig(Observer::FromPath { speed_of_light: 5.0 }).camera_at(0.5, &flat, Vec3::Y).unwrap_err();

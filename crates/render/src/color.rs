@@ -3,9 +3,17 @@
 /// Linear RGB triple. Radiance, reflectance and throughput all use it.
 pub type Rgb = glam::Vec3;
 
+/// ITU-R BT.709 luminance weights of the linear Rec. 709 primaries.
+const LUMINANCE_WEIGHTS: [f64; 3] = [0.2126, 0.7152, 0.0722];
+
 /// Relative luminance of a linear Rec. 709 colour (ITU-R BT.709 weights).
 pub fn luminance(c: Rgb) -> f32 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// [`luminance`] of a colour held in `f64` (accumulated sums).
+pub fn luminance_f64(c: [f64; 3]) -> f64 {
+    c.iter().zip(LUMINANCE_WEIGHTS).map(|(c, w)| c * w).sum()
 }
 
 /// True when every channel is finite; a NaN or infinity anywhere is a bug upstream.

@@ -43,18 +43,24 @@
 //! assert_eq!(film.pixel(3, 2), Rgb::splat(0.5));
 //! ```
 
+mod checkpoint;
 mod filter;
 mod filter_sampler;
+pub mod noise;
 mod output;
 mod pixel;
 mod tile;
 mod tonemap;
 
+pub use checkpoint::{read_checkpoint, write_checkpoint, Checkpoint, CheckpointError};
 pub use filter::{
     BlackmanHarrisFilter, BoxFilter, Filter, FilterError, FilterSample, GaussianFilter, MitchellFilter, TentFilter,
     MAX_FILTER_RADIUS, MITCHELL_RECOMMENDED_B_C,
 };
-pub use output::{check_output_path, write_image, ImageFormat, ImageWriteError};
+pub use output::{
+    check_output_path, check_writable, read_metadata, write_image, ImageFormat, ImageWriteError, Metadata,
+    MetadataReadError, METADATA_PREFIX,
+};
 pub use tile::{FilmTile, TileBounds};
 pub use tonemap::{srgb_oetf, to_rgb8, Curve, ToneMap};
 
@@ -71,11 +77,50 @@ pub struct Film {
     nan_samples: u64,
 }
 
+/// A film too large for the memory that can be had.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FilmTooLarge {
+    pub width: u32,
+    pub height: u32,
+    /// What the film's accumulators need.
+    pub bytes: u64,
+}
+
+impl std::fmt::Display for FilmTooLarge {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "a {}x{} film needs {:.1} GiB of memory ({} bytes a pixel), which cannot be allocated",
+            self.width,
+            self.height,
+            self.bytes as f64 / f64::from(1u32 << 30),
+            Film::BYTES_PER_PIXEL
+        )
+    }
+}
+
+impl std::error::Error for FilmTooLarge {}
+
 impl Film {
+    /// Memory of one pixel's accumulators.
+    pub const BYTES_PER_PIXEL: u64 = std::mem::size_of::<PixelSum>() as u64;
+
     /// An empty (all-black, zero-sample) film.
+    ///
+    /// # Panics
+    /// If the memory cannot be allocated; use [`Film::try_new`] for sizes a user chose.
     pub fn new(width: u32, height: u32) -> Self {
+        Self::try_new(width, height).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// An empty film, or an error (instead of an abort) when its memory cannot be allocated.
+    pub fn try_new(width: u32, height: u32) -> Result<Self, FilmTooLarge> {
         let count = width as usize * height as usize;
-        Self { width, height, pixels: vec![PixelSum::default(); count], nan_samples: 0 }
+        let too_large = || FilmTooLarge { width, height, bytes: count as u64 * Self::BYTES_PER_PIXEL };
+        let mut pixels = Vec::new();
+        pixels.try_reserve_exact(count).map_err(|_| too_large())?;
+        pixels.resize(count, PixelSum::default());
+        Ok(Self { width, height, pixels, nan_samples: 0 })
     }
 
     pub fn width(&self) -> u32 {
@@ -108,8 +153,46 @@ impl Film {
         if is_valid_sample(radiance, weight) {
             self.pixels[index].add(radiance, weight);
         } else {
+            self.pixels[index].reject();
             self.nan_samples += 1;
         }
+    }
+
+    /// A tile over `bounds` that continues this film's sums: render more samples into it (each
+    /// pixel continuing from its [`Film::taken_at`]) and hand it back with [`Film::store_tile`].
+    /// Each pixel's sums then grow one sample at a time in sample order, however the samples are
+    /// split into passes, so a render continued in passes, or stopped and resumed, is
+    /// bit-identical to one made in one go.
+    ///
+    /// # Panics
+    /// If the tile does not lie inside the film.
+    pub fn tile(&self, bounds: TileBounds) -> FilmTile {
+        self.check_fits(bounds);
+        let pixels = bounds.pixels().map(|(x, y)| self.pixels[self.index(x, y)]).collect();
+        FilmTile::continuing(bounds, pixels)
+    }
+
+    /// Puts a tile made by [`Film::tile`] back: its pixels replace the film's, and its rejected
+    /// samples are counted.
+    ///
+    /// # Panics
+    /// If the tile does not lie inside the film.
+    pub fn store_tile(&mut self, tile: FilmTile) {
+        self.for_tile_rows(&tile, |dst, src| *dst = *src);
+        self.nan_samples += tile.nan_samples();
+    }
+
+    /// Copies the pixels of `tiles` from `other` (a film of the same size, e.g. one part of a
+    /// split render) and adds its rejected-sample count.
+    ///
+    /// # Panics
+    /// If the films differ in size or a tile does not fit.
+    pub fn copy_tiles(&mut self, other: &Film, tiles: &[TileBounds]) {
+        assert_eq!((self.width, self.height), (other.width, other.height), "films differ in size");
+        for &bounds in tiles {
+            self.store_tile(other.tile(bounds));
+        }
+        self.nan_samples += other.nan_samples;
     }
 
     /// Adds a tile's accumulators and rejected-sample count into the film.
@@ -121,23 +204,32 @@ impl Film {
     /// # Panics
     /// If the tile does not lie inside the film.
     pub fn merge_tile(&mut self, tile: FilmTile) {
+        self.for_tile_rows(&tile, PixelSum::merge);
+        self.nan_samples += tile.nan_samples();
+    }
+
+    /// Applies `f` to each film pixel and the tile's pixel over it.
+    fn for_tile_rows(&mut self, tile: &FilmTile, f: impl Fn(&mut PixelSum, &PixelSum)) {
         let b = tile.bounds();
+        self.check_fits(b);
+        let tile_width = b.width() as usize;
+        if tile_width > 0 {
+            for (row, sums) in tile.pixel_sums().chunks_exact(tile_width).enumerate() {
+                let start = self.index(b.x0, b.y0 + row as u32);
+                for (dst, src) in self.pixels[start..start + tile_width].iter_mut().zip(sums) {
+                    f(dst, src);
+                }
+            }
+        }
+    }
+
+    fn check_fits(&self, b: TileBounds) {
         assert!(
             b.x1 <= self.width && b.y1 <= self.height,
             "tile {b:?} does not fit in a {}x{} film",
             self.width,
             self.height
         );
-        let tile_width = b.width() as usize;
-        if tile_width > 0 {
-            for (row, sums) in tile.pixel_sums().chunks_exact(tile_width).enumerate() {
-                let start = self.index(b.x0, b.y0 + row as u32);
-                for (dst, src) in self.pixels[start..start + tile_width].iter_mut().zip(sums) {
-                    dst.merge(src);
-                }
-            }
-        }
-        self.nan_samples += tile.nan_samples();
     }
 
     /// The reconstructed radiance of pixel `(x, y)`: the weighted mean of its own samples, black
@@ -158,6 +250,17 @@ impl Film {
     /// Number of samples accumulated at pixel `(x, y)` (rejected NaN/Inf samples excluded).
     pub fn samples_at(&self, x: u32, y: u32) -> u64 {
         self.pixels[self.index(x, y)].count()
+    }
+
+    /// Samples drawn at pixel `(x, y)`, rejected ones included: the index of its next sample.
+    pub fn taken_at(&self, x: u32, y: u32) -> u32 {
+        self.pixels[self.index(x, y)].taken()
+    }
+
+    /// The luminance estimates of pixel `(x, y)` from its even and its odd samples, two
+    /// independent halves (see [`noise`]); `None` before each half has positive weight.
+    pub fn half_luminances(&self, x: u32, y: u32) -> Option<(f64, f64)> {
+        self.pixels[self.index(x, y)].half_luminances()
     }
 
     /// Number of samples rejected, over the whole film, because their radiance or weight was NaN

@@ -359,6 +359,6 @@ fn an_interrupted_render_keeps_its_finished_iterations() {
             cancel.store(true, Ordering::Relaxed);
         }
     });
-    assert_eq!((stats.tiles_done, stats.tiles_total, stats.samples), (2, 10, 128));
+    assert_eq!((stats.spp_max, stats.outcome, stats.samples), (2, render::renderer::Outcome::Interrupted, 128));
     assert!((0..8).all(|x| film.samples_at(x, 3) == 1) && mean(&film) > 0.0);
 }

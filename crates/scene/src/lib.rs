@@ -33,6 +33,7 @@
 
 mod build;
 mod error;
+mod gltf_import;
 mod reader;
 
 pub use error::SceneError;

@@ -500,3 +500,38 @@ fn camera_motion_mistakes_point_at_the_field() {
     check(&format!("{CAMERA}[animation]\nfps = -1\n"), 6, "animation.fps", &["(0, 1000]"]);
     check(&format!("{CAMERA}[animation]\nframes = 0\n"), 6, "animation.frames", &[]);
 }
+
+#[test]
+fn projection_fields_belong_to_their_projection() {
+    const POSE: &str = "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n";
+    let camera = |extra: &str| format!("{POSE}{extra}\n");
+    check(&camera("projection = \"equirect\""), 4, "camera.projection", &["unknown projection", "\"equirectangular\""]);
+    check(&camera("projection = 3"), 4, "camera.projection", &["expected a string"]);
+    // Depth of field and the perspective field of view are the perspective's only.
+    check(
+        &camera("projection = \"equirectangular\"\naperture = 0.1"),
+        5,
+        "camera.aperture",
+        &["only used with projection = \"perspective\"", "depth of field", "\"equirectangular\""],
+    );
+    check(&camera("projection = \"fisheye\"\nfov = 90"), 5, "camera.fov", &["\"perspective\"", "\"fisheye\""]);
+    check(&camera("focus_distance = 2\nprojection = \"ods\""), 4, "camera.focus_distance", &["\"perspective\""]);
+    check(&camera("fisheye_fov = 180"), 4, "camera.fisheye_fov", &["only used with projection = \"fisheye\""]);
+    check(&camera("projection = \"fisheye\"\nipd = 0.06"), 5, "camera.ipd", &["projection = \"ods\""]);
+    check(&camera("projection = \"fisheye\"\nfisheye_fov = 400"), 5, "camera.fisheye_fov", &["(0, 360]", "400"]);
+    check(&camera("projection = \"fisheye\"\nfisheye_fov = 0"), 5, "camera.fisheye_fov", &["(0, 360]"]);
+    check(&camera("projection = \"ods\"\nipd = -0.06"), 5, "camera.ipd", &["> 0"]);
+    // In a keyframe, and in a view.
+    check(
+        "[camera]\nprojection = \"ods\"\n[[camera.keyframes]]\ntime = 0\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 60\n",
+        7,
+        "camera.keyframes[0].fov",
+        &["\"perspective\"", "\"ods\""],
+    );
+    check(
+        &format!("{CAMERA}[views.pano]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nprojection = \"equirectangular\"\naperture = 0.2\n"),
+        9,
+        "views.pano.aperture",
+        &["depth of field"],
+    );
+}

@@ -3,6 +3,7 @@
 mod common;
 
 use common::{scenes_dir, temp_dir, CAMERA, TINY_PNG};
+use render::camera::{Equirectangular, Fisheye, Ods, Projection};
 use render::color::Rgb;
 use render::film::{Curve, Filter};
 use render::material::{ConductorFresnel, Material};
@@ -64,8 +65,9 @@ fn defaults_fill_in_everything_but_the_camera() {
     assert!(matches!(s.spacetime, Spacetime::Minkowski(_)));
     assert_eq!(s.settings.width, render::settings::RenderSettings::default().width);
     assert!(matches!(s.world.sky(Region::Upper), Sky::Constant(c) if *c == Rgb::ZERO));
-    assert_eq!(s.camera.lens_radius, 0.0);
-    assert!((s.camera.focus_distance - 5.0).abs() < 1e-12, "focus defaults to the look_at distance");
+    let Projection::Perspective(lens) = s.camera.projection else { panic!("perspective by default") };
+    assert_eq!(lens.lens_radius, 0.0);
+    assert!((lens.focus_distance - 5.0).abs() < 1e-12, "focus defaults to the look_at distance");
 }
 
 #[test]
@@ -345,7 +347,10 @@ fn documentation_examples_parse() {
     for text in documents {
         if let Err(e) = scene::parse(&text, "docs example", Path::new(".")) {
             let m = e.to_string();
-            assert!(m.contains("cannot load image") || m.contains("cannot open mesh file"), "{m}\nin:\n{text}");
+            let missing_file = m.contains("cannot load image")
+                || m.contains("cannot open mesh file")
+                || (m.contains("glTF file") && m.contains("cannot read"));
+            assert!(missing_file, "{m}\nin:\n{text}");
         }
     }
 }
@@ -363,4 +368,32 @@ fn views_name_other_cameras() {
     let bad = format!("{CAMERA}[views.top]\nposition = [0, 9, 0.1]\nlook_at = [0, 9, 0.1]\n");
     let err = scene::parse(&bad, "v.toml", Path::new(".")).unwrap_err().to_string();
     assert!(err.starts_with("v.toml:7:") && err.contains("views.top.look_at"), "{err}");
+}
+
+#[test]
+fn projections_are_chosen_by_name_with_their_defaults() {
+    const POSE: &str = "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n";
+    let projection = |extra: &str| parse(&format!("{POSE}{extra}")).camera.projection;
+    assert!(matches!(projection(""), Projection::Perspective(_)));
+    assert!(matches!(projection("projection = \"perspective\"\nfov = 50\n"), Projection::Perspective(_)));
+    assert_eq!(projection("projection = \"equirectangular\""), Projection::Equirectangular(Equirectangular));
+    assert_eq!(projection("projection = \"fisheye\""), Projection::Fisheye(Fisheye::new(180.0).unwrap()));
+    assert_eq!(
+        projection("projection = \"fisheye\"\nfisheye_fov = 220"),
+        Projection::Fisheye(Fisheye::new(220.0).unwrap())
+    );
+    assert_eq!(projection("projection = \"ods\""), Projection::Ods(Ods::new(0.064).unwrap()));
+    assert_eq!(projection("projection = \"ods\"\nipd = 0.5"), Projection::Ods(Ods::new(0.5).unwrap()));
+    // A view has its own projection; an orbiting or keyframed camera keeps its projection.
+    let text = format!(
+        "{CAMERA}[views.dome]\nposition = [0, 0, 0]\nlook_at = [0, 1, 0]\nup = [0, 0, -1]\nprojection = \"fisheye\"\n"
+    );
+    let dome = scene::parse_view(&text, "v.toml", Path::new("."), Some("dome")).unwrap();
+    assert!(matches!(dome.camera.projection, Projection::Fisheye(_)));
+    assert!(matches!(parse(&text).camera.projection, Projection::Perspective(_)));
+    let orbit = format!("{POSE}projection = \"ods\"\norbit = {{ center = [0, 0, 0], period = 4 }}\n");
+    let rig = parse(&orbit).animation.unwrap().rig;
+    assert_eq!(rig.projection, Projection::Ods(Ods::new(0.064).unwrap()));
+    let keyed = "[camera]\nprojection = \"equirectangular\"\n[[camera.keyframes]]\ntime = 0\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n";
+    assert_eq!(parse(keyed).camera.projection, Projection::Equirectangular(Equirectangular));
 }

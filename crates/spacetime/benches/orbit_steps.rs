@@ -6,7 +6,7 @@
 //! stepped side by side in one loop are independent chains the core overlaps. Both functions take
 //! the same number of steps; the gap between them is what tracing several rays interleaved per
 //! thread (or SIMD lanes over rays) could win back on this part of the curved render
-//! (BENCHMARKS.md, session 18).
+//! (docs/perf-journal.md, session 18).
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use spacetime::geodesic::binet_taylor::OrbitStep;

@@ -7,8 +7,13 @@
 //! | `.hdr` | Radiance RGBE, linear: exposure as a linear scale; negatives clamped to 0 |
 //!
 //! Extensions match case-insensitively. Files are written to a temporary sibling and renamed into
-//! place, so a reader (or a render interrupted mid-write) never sees a half-written image. Partial
-//! films are fine: pixels with no samples are black.
+//! place, so a reader (or a render interrupted mid-write) never sees a half-written image; the
+//! temporaries of writers that were killed mid-write are removed by the next write beside them.
+//! Partial films are fine: pixels with no samples are black.
+//!
+//! Metadata (what made the image: scene, settings, seed, samples, program version) goes into
+//! PNG `iTXt` chunks and EXR header attributes, each key prefixed with [`METADATA_PREFIX`];
+//! Radiance HDR has no place for it. [`read_metadata`] reads it back.
 
 use std::ffi::OsString;
 use std::fmt;
@@ -17,10 +22,14 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use image::codecs::hdr::HdrEncoder;
-use image::codecs::png::PngEncoder;
-use image::{ExtendedColorType, ImageEncoder};
 
 use super::{to_rgb8, Film, ToneMap};
+
+/// Text about an image, key to value (keys without [`METADATA_PREFIX`]).
+pub type Metadata = std::collections::BTreeMap<String, String>;
+
+/// Prefix of nullpath's keys in image files.
+pub const METADATA_PREFIX: &str = "nullpath.";
 
 /// The image formats [`write_image`] can produce.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -135,9 +144,18 @@ pub fn check_output_path(path: &Path) -> Result<ImageFormat, ImageWriteError> {
     Ok(format)
 }
 
-/// Writes `film` to `path` in the format its extension names (see the module docs); `tonemap`'s
-/// curve applies to PNG only, its exposure to every format.
-pub fn write_image(film: &Film, path: &Path, tonemap: &ToneMap) -> Result<(), ImageWriteError> {
+/// Checks that a file can be created in `path`'s directory, by creating and removing a
+/// temporary there: a read-only directory or full disk is found before a long render, not after.
+pub fn check_writable(path: &Path) -> Result<(), ImageWriteError> {
+    let probe = temporary_sibling(path);
+    let created = File::create(&probe);
+    let _ = std::fs::remove_file(&probe);
+    created.map(drop).map_err(|source| ImageWriteError::Io { path: path.to_owned(), source })
+}
+
+/// Writes `film` to `path` in the format its extension names (see the module docs), with
+/// `metadata`; `tonemap`'s curve applies to PNG only, its exposure to every format.
+pub fn write_image(film: &Film, path: &Path, tonemap: &ToneMap, metadata: &Metadata) -> Result<(), ImageWriteError> {
     let format = check_output_path(path)?;
     if film.width() == 0 || film.height() == 0 {
         return Err(ImageWriteError::EmptyImage { path: path.to_owned() });
@@ -145,9 +163,19 @@ pub fn write_image(film: &Film, path: &Path, tonemap: &ToneMap) -> Result<(), Im
     if !tonemap.exposure_ev.is_finite() {
         return Err(ImageWriteError::InvalidExposure { path: path.to_owned(), exposure_ev: tonemap.exposure_ev });
     }
+    write_atomically(path, |temporary| write_to(film, temporary, format, tonemap, metadata))
+}
 
+/// Runs `write` on a temporary sibling of `path` and renames it into place; on failure the
+/// temporary is removed and the error names `path`. Stale temporaries of `path` left by killed
+/// processes are removed first.
+pub(crate) fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), ImageWriteError>,
+) -> Result<(), ImageWriteError> {
+    remove_stale_temporaries(path);
     let temporary = temporary_sibling(path);
-    let result = write_to(film, &temporary, format, tonemap).and_then(|()| {
+    let result = write(&temporary).and_then(|()| {
         std::fs::rename(&temporary, path).map_err(|source| ImageWriteError::Io { path: path.to_owned(), source })
     });
     if result.is_err() {
@@ -172,13 +200,50 @@ impl ImageWriteError {
 /// `dir/.name.partial-<pid>`: same directory (so the rename is atomic on one file system), hidden,
 /// and distinct per process.
 fn temporary_sibling(path: &Path) -> PathBuf {
+    temporary_sibling_of(path, std::process::id())
+}
+
+fn temporary_sibling_of(path: &Path, pid: u32) -> PathBuf {
     let mut name = OsString::from(".");
     name.push(path.file_name().unwrap_or_default());
-    name.push(format!(".partial-{}", std::process::id()));
+    name.push(format!(".partial-{pid}"));
     path.with_file_name(name)
 }
 
-fn write_to(film: &Film, path: &Path, format: ImageFormat, tonemap: &ToneMap) -> Result<(), ImageWriteError> {
+/// Removes the temporaries of `path` whose writing process no longer runs (it was killed
+/// mid-write). Where processes cannot be looked up (no `/proc`), nothing is removed.
+fn remove_stale_temporaries(path: &Path) {
+    let (Some(name), Some(directory)) = (path.file_name(), path.parent()) else { return };
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let mut prefix = OsString::from(".");
+    prefix.push(name);
+    prefix.push(".partial-");
+    let directory = if directory.as_os_str().is_empty() { Path::new(".") } else { directory };
+    let Ok(entries) = std::fs::read_dir(directory) else { return };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name();
+        let pid = file_name
+            .to_str()
+            .zip(prefix.to_str())
+            .and_then(|(f, p)| f.strip_prefix(p))
+            .and_then(|pid| pid.parse::<u32>().ok());
+        if let Some(pid) = pid {
+            if !Path::new("/proc").join(pid.to_string()).exists() {
+                let _ = std::fs::remove_file(temporary_sibling_of(path, pid));
+            }
+        }
+    }
+}
+
+fn write_to(
+    film: &Film,
+    path: &Path,
+    format: ImageFormat,
+    tonemap: &ToneMap,
+    metadata: &Metadata,
+) -> Result<(), ImageWriteError> {
     let io_error = |source| ImageWriteError::Io { path: path.to_owned(), source };
     let encode_error = |source: Box<dyn std::error::Error + Send + Sync>| ImageWriteError::Encode {
         path: path.to_owned(),
@@ -191,8 +256,17 @@ fn write_to(film: &Film, path: &Path, format: ImageFormat, tonemap: &ToneMap) ->
     match format {
         ImageFormat::Png => {
             let bytes = to_rgb8(film, tonemap);
-            PngEncoder::new(&mut writer)
-                .write_image(&bytes, width, height, ExtendedColorType::Rgb8)
+            let mut encoder = png::Encoder::new(&mut writer, width, height);
+            encoder.set_color(png::ColorType::Rgb);
+            encoder.set_depth(png::BitDepth::Eight);
+            for (key, value) in metadata {
+                encoder
+                    .add_itxt_chunk(format!("{METADATA_PREFIX}{key}"), value.clone())
+                    .map_err(|e| encode_error(Box::new(e)))?;
+            }
+            encoder
+                .write_header()
+                .and_then(|mut w| w.write_image_data(&bytes).and_then(|()| w.finish()))
                 .map_err(|e| encode_error(Box::new(e)))?;
         }
         ImageFormat::Exr => {
@@ -203,10 +277,9 @@ fn write_to(film: &Film, path: &Path, format: ImageFormat, tonemap: &ToneMap) ->
                 (r, g, b)
             });
             let size = (width as usize, height as usize);
-            Image::from_encoded_channels(size, Encoding::SMALL_LOSSLESS, channels)
-                .write()
-                .to_buffered(&mut writer)
-                .map_err(|e| encode_error(Box::new(e)))?;
+            let mut image = Image::from_encoded_channels(size, Encoding::SMALL_LOSSLESS, channels);
+            image.layer_data.attributes.other.extend(exr_attributes(metadata));
+            image.write().to_buffered(&mut writer).map_err(|e| encode_error(Box::new(e)))?;
         }
         ImageFormat::Hdr => {
             let pixels: Vec<image::Rgb<f32>> = film
@@ -221,6 +294,75 @@ fn write_to(film: &Film, path: &Path, format: ImageFormat, tonemap: &ToneMap) ->
     }
     writer.flush().map_err(io_error)?;
     writer.get_ref().sync_all().map_err(io_error)
+}
+
+/// `metadata` as EXR text attributes (UTF-8 bytes: EXR text is bytes, not Latin-1 only).
+pub(crate) fn exr_attributes(
+    metadata: &Metadata,
+) -> impl Iterator<Item = (exr::meta::attribute::Text, exr::meta::attribute::AttributeValue)> + '_ {
+    use exr::meta::attribute::{AttributeValue, Text};
+    metadata.iter().map(|(key, value)| {
+        (
+            Text::from_slice_unchecked(format!("{METADATA_PREFIX}{key}").as_bytes()),
+            AttributeValue::Text(Text::from_slice_unchecked(value.as_bytes())),
+        )
+    })
+}
+
+/// nullpath's metadata among EXR header attributes.
+pub(crate) fn from_exr_attributes<'a>(
+    attributes: impl Iterator<Item = (&'a exr::meta::attribute::Text, &'a exr::meta::attribute::AttributeValue)>,
+) -> Metadata {
+    use exr::meta::attribute::AttributeValue;
+    attributes
+        .filter_map(|(key, value)| {
+            let key = String::from_utf8_lossy(key.as_slice()).strip_prefix(METADATA_PREFIX)?.to_owned();
+            let AttributeValue::Text(text) = value else { return None };
+            Some((key, String::from_utf8_lossy(text.as_slice()).into_owned()))
+        })
+        .collect()
+}
+
+/// Why an image's metadata could not be read.
+#[derive(Debug)]
+pub struct MetadataReadError {
+    pub path: PathBuf,
+    pub reason: String,
+}
+
+impl fmt::Display for MetadataReadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "cannot read '{}': {}", self.path.display(), self.reason)
+    }
+}
+
+impl std::error::Error for MetadataReadError {}
+
+/// The nullpath metadata of a PNG or EXR file (empty for images made by other programs).
+pub fn read_metadata(path: &Path) -> Result<Metadata, MetadataReadError> {
+    let error = |reason: String| MetadataReadError { path: path.to_owned(), reason };
+    match ImageFormat::from_path(path) {
+        Some(ImageFormat::Png) => {
+            let file = File::open(path).map_err(|e| error(e.to_string()))?;
+            let reader =
+                png::Decoder::new(std::io::BufReader::new(file)).read_info().map_err(|e| error(e.to_string()))?;
+            let info = reader.info();
+            let mut metadata = Metadata::new();
+            for chunk in &info.utf8_text {
+                if let Some(key) = chunk.keyword.strip_prefix(METADATA_PREFIX) {
+                    metadata.insert(key.to_owned(), chunk.get_text().map_err(|e| error(e.to_string()))?);
+                }
+            }
+            Ok(metadata)
+        }
+        Some(ImageFormat::Exr) => {
+            let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| error(e.to_string()))?;
+            let header = meta.headers.first().ok_or_else(|| error("the file has no image".into()))?;
+            Ok(from_exr_attributes(header.own_attributes.other.iter().chain(&header.shared_attributes.other)))
+        }
+        Some(ImageFormat::Hdr) => Err(error("Radiance HDR files carry no metadata; use .png or .exr".into())),
+        None => Err(error(format!("not an image nullpath writes ({SUPPORTED})"))),
+    }
 }
 
 #[cfg(test)]
@@ -264,7 +406,7 @@ mod tests {
         let path = temp_path("round-trip", "png");
         let _cleanup = Cleanup(path.clone());
         let tonemap = ToneMap { exposure_ev: 0.0, curve: Curve::Linear };
-        write_image(&film, &path, &tonemap).expect("PNG written");
+        write_image(&film, &path, &tonemap, &Metadata::new()).expect("PNG written");
         let read = image::open(&path).expect("PNG readable").to_rgb8();
         assert_eq!(read.dimensions(), (3, 2));
         assert_eq!(read.as_raw(), &to_rgb8(&film, &tonemap));
@@ -284,7 +426,7 @@ mod tests {
         let _cleanup = Cleanup(path.clone());
         // One stop up: an exact doubling in binary floating point. The curve does not apply.
         let tonemap = ToneMap { exposure_ev: 1.0, curve: Curve::Filmic };
-        write_image(&film, &path, &tonemap).expect("EXR written");
+        write_image(&film, &path, &tonemap, &Metadata::new()).expect("EXR written");
         let read = image::open(&path).expect("EXR readable").into_rgb32f();
         assert_eq!(read.dimensions(), (3, 2));
         for (x, y) in film.bounds().pixels() {
@@ -301,7 +443,7 @@ mod tests {
         let film = small_film();
         let path = temp_path("round-trip", "hdr");
         let _cleanup = Cleanup(path.clone());
-        write_image(&film, &path, &ToneMap::default()).expect("HDR written");
+        write_image(&film, &path, &ToneMap::default(), &Metadata::new()).expect("HDR written");
         let read = image::open(&path).expect("HDR readable").into_rgb32f();
         // RGBE keeps 8 mantissa bits relative to the pixel's largest channel.
         for (x, y) in film.bounds().pixels() {
@@ -318,7 +460,7 @@ mod tests {
         film.add_sample(1, 0, Rgb::ONE, 1.0);
         let path = temp_path("partial", "png");
         let _cleanup = Cleanup(path.clone());
-        write_image(&film, &path, &ToneMap::default()).expect("PNG written");
+        write_image(&film, &path, &ToneMap::default(), &Metadata::new()).expect("PNG written");
         let read = image::open(&path).expect("PNG readable").to_rgb8();
         assert_eq!(read.as_raw(), &[0, 0, 0, 255, 255, 255, 0, 0, 0, 0, 0, 0]);
     }
@@ -328,7 +470,7 @@ mod tests {
         let film = small_film();
         for name in ["render.jpg", "render", "render.png.bak"] {
             let path = std::env::temp_dir().join(name);
-            let err = write_image(&film, &path, &ToneMap::default()).expect_err("must fail");
+            let err = write_image(&film, &path, &ToneMap::default(), &Metadata::new()).expect_err("must fail");
             assert!(matches!(err, ImageWriteError::UnsupportedExtension { .. }));
             let message = err.to_string();
             assert!(message.contains(&path.display().to_string()), "{message}");
@@ -341,7 +483,7 @@ mod tests {
     fn missing_directory_is_a_clear_error() {
         let directory = std::env::temp_dir().join(format!("nullpath-film-no-such-directory-{}", std::process::id()));
         let path = directory.join("out.png");
-        let err = write_image(&small_film(), &path, &ToneMap::default()).expect_err("must fail");
+        let err = write_image(&small_film(), &path, &ToneMap::default(), &Metadata::new()).expect_err("must fail");
         assert!(matches!(err, ImageWriteError::MissingDirectory { .. }));
         let message = err.to_string();
         assert!(message.contains(&path.display().to_string()), "{message}");
@@ -355,7 +497,7 @@ mod tests {
         let _cleanup = Cleanup(not_a_directory.clone());
         std::fs::write(&not_a_directory, b"x").expect("temp file");
         let path = not_a_directory.join("out.exr");
-        let err = write_image(&small_film(), &path, &ToneMap::default()).expect_err("must fail");
+        let err = write_image(&small_film(), &path, &ToneMap::default(), &Metadata::new()).expect_err("must fail");
         assert!(matches!(err, ImageWriteError::NotADirectory { .. }));
         let message = err.to_string();
         assert!(message.contains(&path.display().to_string()), "{message}");
@@ -367,7 +509,7 @@ mod tests {
         // The target is an existing directory: everything succeeds until the final rename.
         let path = temp_path("is-a-directory", "png");
         std::fs::create_dir(&path).expect("temp directory");
-        let err = write_image(&small_film(), &path, &ToneMap::default()).expect_err("must fail");
+        let err = write_image(&small_film(), &path, &ToneMap::default(), &Metadata::new()).expect_err("must fail");
         let temporary_left = temporary_sibling(&path).exists();
         std::fs::remove_dir(&path).expect("remove temp directory");
         assert!(matches!(err, ImageWriteError::Io { .. }), "{err:?}");
@@ -379,10 +521,10 @@ mod tests {
     #[test]
     fn empty_film_and_bad_exposure_are_errors() {
         let path = temp_path("empty", "png");
-        let err = write_image(&Film::new(0, 4), &path, &ToneMap::default()).expect_err("empty");
+        let err = write_image(&Film::new(0, 4), &path, &ToneMap::default(), &Metadata::new()).expect_err("empty");
         assert!(matches!(err, ImageWriteError::EmptyImage { .. }));
         let tonemap = ToneMap { exposure_ev: f64::NAN, curve: Curve::Linear };
-        let err = write_image(&small_film(), &path, &tonemap).expect_err("NaN exposure");
+        let err = write_image(&small_film(), &path, &tonemap, &Metadata::new()).expect_err("NaN exposure");
         assert!(err.to_string().contains("exposure"));
         assert!(!path.exists());
     }

@@ -73,6 +73,12 @@ impl FilmTile {
         Self { bounds, pixels: vec![PixelSum::default(); bounds.pixel_count()], nan_samples: 0 }
     }
 
+    /// A tile that continues the given pixel sums (row-major over `bounds`).
+    pub(crate) fn continuing(bounds: TileBounds, pixels: Vec<PixelSum>) -> Self {
+        debug_assert_eq!(pixels.len(), bounds.pixel_count());
+        Self { bounds, pixels, nan_samples: 0 }
+    }
+
     pub fn bounds(&self) -> TileBounds {
         self.bounds
     }
@@ -88,6 +94,7 @@ impl FilmTile {
         if is_valid_sample(radiance, weight) {
             self.pixels[index].add(radiance, weight);
         } else {
+            self.pixels[index].reject();
             self.nan_samples += 1;
         }
     }
@@ -95,6 +102,12 @@ impl FilmTile {
     /// Samples accumulated so far at pixel `(x, y)` (absolute coordinates; panics outside).
     pub fn samples_at(&self, x: u32, y: u32) -> u64 {
         self.pixels[self.index(x, y)].count()
+    }
+
+    /// Samples drawn so far at pixel `(x, y)`, rejected ones included: the index of its next
+    /// sample (absolute coordinates; panics outside).
+    pub fn taken_at(&self, x: u32, y: u32) -> u32 {
+        self.pixels[self.index(x, y)].taken()
     }
 
     /// Samples rejected because they were NaN or infinite.
@@ -142,6 +155,7 @@ mod tests {
         tile.add_sample(2, 3, Rgb::ONE, f64::INFINITY);
         assert_eq!(tile.samples_at(3, 4), 1);
         assert_eq!(tile.samples_at(2, 3), 0);
+        assert_eq!((tile.taken_at(3, 4), tile.taken_at(2, 3)), (2, 1));
         assert_eq!(tile.nan_samples(), 2);
     }
 

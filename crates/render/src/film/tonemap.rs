@@ -20,6 +20,17 @@ pub enum Curve {
 }
 
 impl Curve {
+    /// Every curve.
+    pub const ALL: [Curve; 2] = [Curve::Linear, Curve::Filmic];
+
+    /// Its name in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Curve::Linear => "linear",
+            Curve::Filmic => "filmic",
+        }
+    }
+
     /// Maps exposed linear radiance to `[0, 1]`. Negative input (possible with negative-lobed
     /// filters) maps to 0; NaN maps to 0.
     pub fn apply(self, x: f64) -> f64 {

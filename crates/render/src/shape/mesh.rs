@@ -124,16 +124,48 @@ impl TriangleMesh {
         Ok(Self { positions, normals, uvs, indices })
     }
 
+    /// As [`TriangleMesh::new`], from object-space data with `transform` (object to world) baked
+    /// in: positions mapped as points, normals by the inverse transpose, and the winding reversed
+    /// by a mirroring transform so that `ng` still points outward.
+    pub fn placed(
+        mut positions: Vec<Vec3>,
+        mut normals: Option<Vec<Vec3>>,
+        uvs: Option<Vec<[f64; 2]>>,
+        mut indices: Vec<[u32; 3]>,
+        transform: &Transform,
+    ) -> Result<Self, MeshDefect> {
+        if !transform.is_finite() || transform.linear().determinant() == 0.0 {
+            return Err(MeshDefect::InvalidTransform);
+        }
+        for p in &mut positions {
+            *p = transform.point(*p);
+        }
+        for n in normals.iter_mut().flatten() {
+            *n = transform.normal(*n);
+        }
+        if transform.swaps_handedness() {
+            for tri in &mut indices {
+                tri.swap(1, 2);
+            }
+        }
+        Self::new(positions, normals, uvs, indices)
+    }
+
     /// One [`Shape::Triangle`] per triangle with non-zero area (degenerate triangles can never be
     /// hit and have no normal, so they are left out).
     pub fn shapes(mesh: &Arc<TriangleMesh>) -> Vec<Shape> {
+        Self::triangles(mesh).into_iter().map(Shape::Triangle).collect()
+    }
+
+    /// The triangles with non-zero area, as [`TriangleMesh::shapes`] lists them.
+    pub fn triangles(mesh: &Arc<TriangleMesh>) -> Vec<Triangle> {
         (0..mesh.indices.len())
             .filter(|&i| {
                 let [a, b, c] = mesh.indices[i].map(|k| mesh.positions[k as usize]);
                 (b - a).cross(c - a).normalize_or_zero() != Vec3::ZERO
             })
             .filter_map(|i| u32::try_from(i).ok())
-            .map(|i| Shape::Triangle(Triangle::new(Arc::clone(mesh), i)))
+            .map(|i| Triangle::new(Arc::clone(mesh), i))
             .collect()
     }
 
@@ -258,22 +290,9 @@ pub fn load_obj(path: &Path, transform: &Transform) -> Result<Vec<Shape>, MeshEr
         indices.extend(m.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]].map(|i| i.saturating_add(base))));
     }
 
-    if !transform.is_finite() || transform.linear().determinant() == 0.0 {
-        return Err(invalid(MeshDefect::InvalidTransform));
-    }
-    for p in &mut positions {
-        *p = transform.point(*p);
-    }
-    for n in &mut normals {
-        *n = transform.normal(*n);
-    }
-    if transform.swaps_handedness() {
-        for tri in &mut indices {
-            tri.swap(1, 2);
-        }
-    }
-    let mesh = TriangleMesh::new(positions, all_normals.then_some(normals), all_uvs.then_some(uvs), indices)
-        .map_err(invalid)?;
+    let mesh =
+        TriangleMesh::placed(positions, all_normals.then_some(normals), all_uvs.then_some(uvs), indices, transform)
+            .map_err(invalid)?;
     let shapes = TriangleMesh::shapes(&Arc::new(mesh));
     if shapes.is_empty() {
         return Err(invalid(MeshDefect::NoTriangles));

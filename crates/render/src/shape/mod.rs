@@ -9,7 +9,8 @@
 //! ray parameter `t` is the same in both spaces and is the world distance along the unit world ray
 //! (pbrt-v4 §6.1.4). Non-uniform scale therefore just works: a scaled sphere is an ellipsoid.
 //! Planar shapes (plane, rectangle, triangle) are baked into world space, since an affine map
-//! keeps them planar.
+//! keeps them planar. An [`Instance`] keeps a shared mesh in its own space with its placement,
+//! like the analytic shapes, so that many placements share one copy of the triangles.
 //!
 //! # Conventions
 //!
@@ -39,6 +40,7 @@
 mod cuboid;
 mod cylinder;
 mod disk;
+pub mod instance;
 pub mod mesh;
 mod plane;
 mod quadratic;
@@ -50,6 +52,7 @@ mod triangle;
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
+pub use instance::{Instance, InstancedMesh};
 pub use mesh::{load_obj, MeshDefect, MeshError, TriangleMesh};
 pub use plane::Plane;
 pub use rectangle::Rectangle;
@@ -89,6 +92,8 @@ pub enum Shape {
     Cuboid(Box<Cuboid>),
     Cylinder(Box<Cylinder>),
     Triangle(Triangle),
+    /// A placement of a mesh shared with other placements.
+    Instance(Box<Instance>),
 }
 
 /// Forwards a method call to whichever shape `self` holds.
@@ -102,6 +107,7 @@ macro_rules! dispatch {
             Shape::Cuboid($s) => $e,
             Shape::Cylinder($s) => $e,
             Shape::Triangle($s) => $e,
+            Shape::Instance($s) => $e,
         }
     };
 }
@@ -201,7 +207,7 @@ impl Shape {
             Shape::Rectangle(s) => Some(s.supporting_plane()),
             Shape::Disk(s) => Some(s.supporting_plane()),
             Shape::Triangle(s) => s.supporting_plane(),
-            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cylinder(_) => None,
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Instance(_) => None,
         }
     }
 
@@ -223,7 +229,7 @@ macro_rules! impl_from_boxed {
     };
 }
 
-impl_from_boxed!(Sphere, Plane, Rectangle, Disk, Cuboid, Cylinder);
+impl_from_boxed!(Sphere, Plane, Rectangle, Disk, Cuboid, Cylinder, Instance);
 
 impl From<Triangle> for Shape {
     fn from(t: Triangle) -> Shape {
@@ -404,6 +410,9 @@ pub(crate) mod tests {
         .unwrap();
         let mesh = std::sync::Arc::new(mesh);
         shapes.extend(TriangleMesh::shapes(&mesh).into_iter().map(|s| ("triangle".to_string(), s)));
+        // Rigid only: an instance samples uniformly by area under similarities (see its docs).
+        let quad = std::sync::Arc::new(InstancedMesh::new(instance::tests::tilted_quad()).unwrap());
+        shapes.push(("instance".to_string(), Instance::new(quad, &placed(false)).unwrap().into()));
         shapes
     }
 

@@ -3,8 +3,8 @@
 
 use super::Builder;
 use crate::reader::{fmt_vec, num, Result, Table};
-use render::camera::look_rotation;
-use render::camera_path::{CameraPath, CameraRig, Keyframe, Observer};
+use render::camera::{look_rotation, Equirectangular, Fisheye, Ods, Perspective, Projection};
+use render::camera_path::{CameraPath, CameraRig, Keyframe, Observer, Pose};
 use render::geometry::Vec3;
 use render::scene::Animation;
 use spacetime::Spacetime;
@@ -17,6 +17,9 @@ pub(super) const CAMERA_KEYS: &[&str] = &[
     "aperture",
     "focus_distance",
     "region",
+    "projection",
+    "fisheye_fov",
+    "ipd",
     "velocity",
     "speed_of_light",
     "keyframes",
@@ -26,6 +29,20 @@ const KEYFRAME_KEYS: &[&str] = &["time", "position", "look_at", "up", "fov", "fo
 const ORBIT_KEYS: &[&str] = &["center", "axis", "period"];
 pub(super) const ANIMATION_KEYS: &[&str] = &["fps", "frames"];
 
+/// The index of `"perspective"` in [`PROJECTIONS`], the default.
+const PERSPECTIVE: usize = 0;
+
+/// Reads a projection's own fields from `[camera]`; `start` is the pose at time 0.
+type ReadProjection = fn(&Table<'_>, &Pose) -> Result<Projection>;
+
+/// The projections by name, each with the fields only it reads and how it reads them.
+const PROJECTIONS: &[(&str, &[&str], ReadProjection)] = &[
+    ("perspective", &["fov", "aperture", "focus_distance"], perspective),
+    ("equirectangular", &[], |_, _| Ok(Projection::Equirectangular(Equirectangular))),
+    ("fisheye", &["fisheye_fov"], fisheye),
+    ("ods", &["ipd"], ods),
+];
+
 /// The fields a keyframe inherits from `[camera]`.
 struct Defaults {
     up: Vec3,
@@ -34,20 +51,19 @@ struct Defaults {
 }
 
 impl Builder<'_> {
-    /// `[camera]`: the camera's rig (its path, lens, region and motion).
+    /// `[camera]`: the camera's rig (its path, projection, region and motion).
     pub(super) fn camera_rig(&self, t: &Table<'_>) -> Result<CameraRig> {
         let defaults = Defaults {
             up: t.or("up", Vec3::Y, |n| n.direction())?,
             fov: t.or("fov", 40.0, |n| n.f64())?,
             focus_distance: t.opt("focus_distance", |n| n.f64())?,
         };
-        let aperture = t.or("aperture", 0.0, |n| n.f64())?;
-        if !(aperture >= 0.0 && aperture.is_finite()) {
-            return Err(t.loc("aperture").err(format!("must be a finite number ≥ 0, got {}", num(aperture))));
-        }
+        let names: Vec<&str> = PROJECTIONS.iter().map(|p| p.0).collect();
+        let kind = t.get("projection").map(|n| n.keyword("projection", &names)).transpose()?.unwrap_or(PERSPECTIVE);
+        only_own_fields(t, kind)?;
         let path = match (t.get("keyframes"), t.get("orbit")) {
             (Some(_), Some(orbit)) => return Err(orbit.err("give either keyframes or an orbit, not both")),
-            (Some(keys), None) => keyframes(t, &keys.array()?, &defaults)?,
+            (Some(keys), None) => keyframes(t, &keys.array()?, &defaults, kind)?,
             (None, orbit) => {
                 let start = keyframe(t, 0.0, &defaults)?;
                 match orbit {
@@ -56,8 +72,57 @@ impl Builder<'_> {
                 }
             }
         };
-        Ok(CameraRig { region: self.region(t)?, path, lens_radius: aperture, observer: observer(t)? })
+        let projection = (PROJECTIONS[kind].2)(t, &path.pose(0.0))?;
+        Ok(CameraRig { region: self.region(t)?, path, projection, observer: observer(t)? })
     }
+}
+
+/// An error for a field of table `t` that only another projection than `PROJECTIONS[kind]` reads.
+fn only_own_fields(t: &Table<'_>, kind: usize) -> Result<()> {
+    for (i, (owner, fields, _)) in PROJECTIONS.iter().enumerate().filter(|(i, _)| *i != kind) {
+        if let Some(n) = fields.iter().find_map(|f| t.get(f)) {
+            let what = if i == PERSPECTIVE {
+                " (field of view, depth of field and focus are a perspective lens's)"
+            } else {
+                ""
+            };
+            return Err(n.err(format!(
+                "only used with projection = \"{owner}\"{what}; this camera's projection is \"{}\"",
+                PROJECTIONS[kind].0
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// `projection = "perspective"`: the pose's field of view and focus, and `aperture` (the lens
+/// radius, 0 for a pinhole).
+fn perspective(t: &Table<'_>, start: &Pose) -> Result<Projection> {
+    let aperture = t.or("aperture", 0.0, |n| n.f64())?;
+    if !(aperture >= 0.0 && aperture.is_finite()) {
+        return Err(t.loc("aperture").err(format!("must be a finite number ≥ 0, got {}", num(aperture))));
+    }
+    // The pose's field of view and focus were checked where they were read.
+    let lens = Perspective::new(start.fov, aperture, start.focus_distance).map_err(|e| t.err(e))?;
+    Ok(Projection::Perspective(lens))
+}
+
+/// `projection = "fisheye"`: `fisheye_fov`, degrees across the image's inscribed circle.
+fn fisheye(t: &Table<'_>, _: &Pose) -> Result<Projection> {
+    let fov = t.or("fisheye_fov", 180.0, |n| n.f64())?;
+    if !(fov > 0.0 && fov <= 360.0) {
+        return Err(t.loc("fisheye_fov").err(format!("must be in (0, 360] degrees, got {}", num(fov))));
+    }
+    Fisheye::new(fov).map(Projection::Fisheye).map_err(|e| t.loc("fisheye_fov").err(e))
+}
+
+/// `projection = "ods"`: `ipd`, the interpupillary distance in scene units.
+fn ods(t: &Table<'_>, _: &Pose) -> Result<Projection> {
+    let ipd = t.or("ipd", 0.064, |n| n.f64())?;
+    if !(ipd > 0.0) {
+        return Err(t.loc("ipd").err(format!("must be a distance > 0, got {}", num(ipd))));
+    }
+    Ods::new(ipd).map(Projection::Ods).map_err(|e| t.loc("ipd").err(e))
 }
 
 /// A pose from `position`, `look_at`, `up`, `fov` and `focus_distance` of table `t`, with
@@ -86,7 +151,12 @@ fn keyframe(t: &Table<'_>, time: f64, defaults: &Defaults) -> Result<Keyframe> {
 }
 
 /// `[[camera.keyframes]]`: each with its `time`; `[camera]` then gives no pose of its own.
-fn keyframes(camera: &Table<'_>, elements: &[crate::reader::Node<'_>], defaults: &Defaults) -> Result<CameraPath> {
+fn keyframes(
+    camera: &Table<'_>,
+    elements: &[crate::reader::Node<'_>],
+    defaults: &Defaults,
+    projection: usize,
+) -> Result<CameraPath> {
     for key in ["position", "look_at"] {
         if let Some(n) = camera.get(key) {
             return Err(n.err("with keyframes, give position and look_at in each keyframe"));
@@ -98,6 +168,7 @@ fn keyframes(camera: &Table<'_>, elements: &[crate::reader::Node<'_>], defaults:
     let mut keys: Vec<Keyframe> = Vec::with_capacity(elements.len());
     for element in elements {
         let t = element.table(KEYFRAME_KEYS)?;
+        only_own_fields(&t, projection)?;
         let time = t.req("time", |n| n.f64())?;
         if let Some(previous) = keys.last().filter(|k| !(time > k.time)) {
             return Err(t.loc("time").err(format!(

@@ -2,6 +2,7 @@
 //! values where it reads them so that errors point at the offending value.
 
 mod camera;
+mod gltf_object;
 mod material;
 mod object;
 mod settings;

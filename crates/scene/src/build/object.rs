@@ -12,7 +12,7 @@ use render::transform::Transform;
 use render::world::{Emission, Object};
 use spacetime::Region;
 
-const OBJECT_KEYS: &[&str] = &["shape", "material", "emission", "transform", "region"];
+const OBJECT_KEYS: &[&str] = &["shape", "gltf", "material", "materials", "emission", "transform", "region"];
 
 const SHAPES: &[(&str, &[&str])] = &[
     ("sphere", &["center", "centre", "radius"]),
@@ -99,6 +99,12 @@ impl Builder<'_> {
             Some(n) => transform(n)?,
             None => Transform::identity(),
         };
+        if let Some(file) = t.get("gltf") {
+            return self.gltf_entry(&t, &file, &placement).map(|objects| (region, objects));
+        }
+        if let Some(n) = t.get("materials") {
+            return Err(n.err("`materials` maps a glTF file's materials: it needs `gltf = \"file.glb\"`"));
+        }
         let emission = t.opt("emission", emission)?;
         let material = match t.get("material") {
             Some(n) => self.material_ref(&n)?,
@@ -110,8 +116,19 @@ impl Builder<'_> {
         Ok((region, shapes.into_iter().map(|shape| Object { shape, material, emission }).collect()))
     }
 
+    /// An object entry with `gltf = "…"` instead of a shape.
+    fn gltf_entry(&mut self, t: &Table<'_>, file: &Node<'_>, placement: &Transform) -> Result<Vec<Object>> {
+        if let Some(shape) = t.get("shape") {
+            return Err(shape.err("an object has a `shape` or a `gltf` file, not both"));
+        }
+        if let Some(e) = t.get("emission") {
+            return Err(e.err("a glTF file's lights are its materials' emissive colours: `emission` is for shapes"));
+        }
+        self.gltf_objects(t, file, placement)
+    }
+
     /// The material of objects that name none: diffuse grey 0.5.
-    fn default_material(&mut self) -> usize {
+    pub(super) fn default_material(&mut self) -> usize {
         *self.default_material.get_or_insert_with(|| {
             self.materials.push(Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.5)) });
             self.materials.len() - 1

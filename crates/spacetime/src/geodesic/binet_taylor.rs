@@ -203,7 +203,7 @@ fn value_and_slope<const N: usize>(c: &[f64; N], h: f64) -> (f64, f64) {
 /// A polynomial at `h` by Horner's rule in `h²` on its even and odd coefficients apart,
 /// `E(h²) + h O(h²)` (second-order Horner): two independent chains half as long as Horner's in
 /// `h`, whose dependent multiply–adds, not their count, are what a step's points wait for
-/// (with [`slope`], −9 % time on the curved room, BENCHMARKS.md session 17).
+/// (with [`slope`], −9 % time on the curved room, docs/perf-journal.md, session 17).
 #[inline]
 fn value<const N: usize>(c: &[f64; N], h: f64) -> f64 {
     let z = h * h;

@@ -35,7 +35,7 @@ use super::stats::PathStats;
 use crate::color::Rgb;
 use crate::film::Film;
 use crate::propagator::Propagator;
-use crate::renderer::RenderStats;
+use crate::renderer::{Outcome, RenderStats};
 use crate::sampling::{Rng, Sampler};
 use crate::scene::Scene;
 use crate::world::World;
@@ -110,8 +110,10 @@ pub fn render(
         samples: u64::from(done) * pixel_count as u64,
         nan_samples: film.nan_samples() + totals.dropped,
         seconds: start.elapsed().as_secs_f64(),
-        tiles_done: u64::from(done),
-        tiles_total: u64::from(settings.spp),
+        outcome: if done == settings.spp { Outcome::Finished } else { Outcome::Interrupted },
+        spp_min: done,
+        spp_max: done,
+        relative_error: None,
     };
     (film, stats)
 }
@@ -223,12 +225,17 @@ fn camera_pass(scene: &Scene, camera: &CameraPass<'_>, iteration: u32) -> (Vec<(
                     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
                     let mut sampler = Sampler::for_sample(settings.seed, pixel, u64::from(iteration));
                     let fs = settings.filter.sample(sampler.next_2d());
-                    let film_x = f64::from(x) + 0.5 + fs.offset[0];
-                    let film_y = f64::from(y) + 0.5 + fs.offset[1];
-                    let ray = scene.camera.ray(film_x, film_y, settings.width, settings.height, sampler.next_2d());
-                    let beta = Rgb::splat(ray.weight * fs.weight as f32);
-                    let start = (scene.camera.region, ray.origin, ray.direction);
-                    (camera.trace(start, beta, &mut sampler, &mut stats), fs.weight)
+                    let size = [settings.width, settings.height];
+                    let sample = match scene.camera.ray([x, y], fs.offset, size, sampler.next_2d()) {
+                        Some(ray) => {
+                            let beta = Rgb::splat(ray.weight * fs.weight as f32);
+                            let start = (scene.camera.region, ray.origin, ray.direction);
+                            camera.trace(start, beta, &mut sampler, &mut stats)
+                        }
+                        // Where the camera sees nothing (outside a fisheye's circle): black.
+                        None => CameraSample { emitted: Rgb::ZERO, visible: None },
+                    };
+                    (sample, fs.weight)
                 })
                 .collect();
             (row, stats)

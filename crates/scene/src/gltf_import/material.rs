@@ -1,0 +1,197 @@
+//! glTF's metallic–roughness materials as nullpath materials.
+//!
+//! | glTF material                                           | nullpath material                         |
+//! |---------------------------------------------------------|-------------------------------------------|
+//! | `KHR_materials_transmission` factor > 0                 | `dielectric`, `ior` from `KHR_materials_ior` (1.5), tinted by the base colour |
+//! | metallic ≥ 0.5, roughness < 0.0316 (GGX α < 10⁻³)       | `mirror`, reflectance = base colour (texture × factor) |
+//! | metallic ≥ 0.5, rougher                                 | `conductor`, Schlick `f0` = base colour factor |
+//! | metallic < 0.5                                          | `plastic`: base colour (texture × factor) under a coating of index 1.5 (glTF's F0 = 0.04) and the same roughness |
+//!
+//! Roughness means the same in both (GGX `α = roughness²`). Emission is `emissiveFactor` times
+//! `KHR_materials_emissive_strength`, constant over the surface (an emissive texture is ignored,
+//! with a warning), one-sided unless the material is `doubleSided`. Base-colour textures are
+//! decoded from sRGB to linear; their alpha, the metallic–roughness, normal and occlusion
+//! textures are ignored (a warning names the material).
+
+use super::named;
+use render::color::Rgb;
+use render::image_io::{srgb_to_linear, ImageData};
+use render::material::microfacet::SMOOTH_ALPHA;
+use render::material::{ConductorFresnel, Material};
+use render::texture::Texture;
+use render::world::Emission;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Index of refraction of glTF's dielectrics: its `F0 = 0.04` is `((n − 1)/(n + 1))²` at 1.5.
+const GLTF_IOR: f64 = 1.5;
+/// Metallic factors from here up are metals; below, dielectrics.
+const METAL_FROM: f32 = 0.5;
+
+/// An image's size and linear pixels.
+type Decoded = (usize, usize, Arc<Vec<Rgb>>);
+
+/// A glTF material, mapped.
+#[derive(Clone, Debug)]
+pub(crate) struct GltfMaterial {
+    pub name: Option<String>,
+    pub material: Material,
+    pub emission: Option<Emission>,
+}
+
+/// Every material of the document, in order.
+pub(super) fn materials(
+    document: &gltf::Document,
+    base: &Path,
+    buffers: &[gltf::buffer::Data],
+    warnings: &mut Vec<String>,
+) -> Result<Vec<GltfMaterial>, String> {
+    let mut images: Vec<Option<Decoded>> = vec![None; document.images().len()];
+    let mut mapped = Vec::new();
+    for m in document.materials() {
+        let name = named("material", m.index().unwrap_or(0), m.name());
+        let ignored: Vec<&str> = [
+            (m.normal_texture().is_some(), "normal"),
+            (m.occlusion_texture().is_some(), "occlusion"),
+            (m.pbr_metallic_roughness().metallic_roughness_texture().is_some(), "metallic-roughness"),
+            (m.emissive_texture().is_some(), "emissive"),
+        ]
+        .into_iter()
+        .filter_map(|(present, what)| present.then_some(what))
+        .collect();
+        if !ignored.is_empty() {
+            warnings.push(format!("{name}: its {} texture(s) are ignored", ignored.join(", ")));
+        }
+        let base_colour = base_colour(&m, &name, base, buffers, &mut images, warnings)?;
+        mapped.push(GltfMaterial {
+            name: m.name().map(str::to_string),
+            material: surface(&m, base_colour),
+            emission: emission(&m, &name)?,
+        });
+    }
+    Ok(mapped)
+}
+
+/// The nullpath material for `m`, whose base colour (texture × factor) is `base_colour`.
+fn surface(m: &gltf::Material<'_>, base_colour: Texture) -> Material {
+    let pbr = m.pbr_metallic_roughness();
+    let factor = pbr.base_color_factor();
+    let colour = Rgb::new(factor[0], factor[1], factor[2]).clamp(Rgb::ZERO, Rgb::ONE);
+    let roughness = f64::from(pbr.roughness_factor()).clamp(0.0, 1.0);
+    let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
+    if transmission > 0.0 {
+        let ior = m.ior().map_or(GLTF_IOR, f64::from);
+        let ior = if ior.is_finite() && ior > 0.0 { ior } else { GLTF_IOR };
+        Material::Dielectric { ior, transmittance: base_colour }
+    } else if pbr.metallic_factor() >= METAL_FROM {
+        if roughness * roughness < SMOOTH_ALPHA {
+            Material::Mirror { reflectance: base_colour }
+        } else {
+            Material::RoughConductor { roughness, fresnel: ConductorFresnel::Schlick { f0: colour } }
+        }
+    } else {
+        Material::RoughPlastic { diffuse: base_colour, roughness, ior: GLTF_IOR }
+    }
+}
+
+/// `emissiveFactor × emissive_strength`, if not black.
+fn emission(m: &gltf::Material<'_>, name: &str) -> Result<Option<Emission>, String> {
+    let strength = m.emissive_strength().unwrap_or(1.0);
+    let [r, g, b] = m.emissive_factor().map(|c| c * strength);
+    let radiance = Rgb::new(r, g, b);
+    if !(radiance.is_finite() && radiance.min_element() >= 0.0) {
+        return Err(format!("{name}: its emission {radiance} is not a finite non-negative colour"));
+    }
+    Ok((radiance.max_element() > 0.0).then_some(Emission { radiance, two_sided: m.double_sided() }))
+}
+
+/// The base colour: its texture's linear pixels times the factor, or the factor alone.
+fn base_colour(
+    m: &gltf::Material<'_>,
+    name: &str,
+    base: &Path,
+    buffers: &[gltf::buffer::Data],
+    images: &mut [Option<Decoded>],
+    warnings: &mut Vec<String>,
+) -> Result<Texture, String> {
+    let pbr = m.pbr_metallic_roughness();
+    let f = pbr.base_color_factor();
+    let factor = Rgb::new(f[0], f[1], f[2]);
+    if !(factor.is_finite()) {
+        return Err(format!("{name}: its baseColorFactor {factor} is not finite"));
+    }
+    let Some(info) = pbr.base_color_texture() else {
+        return Ok(Texture::Constant(factor));
+    };
+    if info.tex_coord() != 0 {
+        warnings.push(format!("{name}: its base colour uses TEXCOORD_{}; TEXCOORD_0 is used", info.tex_coord()));
+    }
+    let image = info.texture().source();
+    let (width, height, pixels) = decode(&image, base, buffers, images)?;
+    let scaled: Vec<Rgb> = pixels.iter().map(|&c| c * factor).collect();
+    let data = ImageData::new(width, height, scaled)
+        .ok_or_else(|| format!("{}: has no pixels", named("image", image.index(), image.name())))?;
+    Ok(Texture::Image { image: Arc::new(data), uv_scale: [1.0, 1.0] })
+}
+
+/// The linear RGB pixels of an sRGB-encoded image, decoded once per image.
+fn decode(
+    image: &gltf::Image<'_>,
+    base: &Path,
+    buffers: &[gltf::buffer::Data],
+    images: &mut [Option<Decoded>],
+) -> Result<Decoded, String> {
+    if let Some(Some(decoded)) = images.get(image.index()) {
+        return Ok(decoded.clone());
+    }
+    let what = named("image", image.index(), image.name());
+    let source = match image.source() {
+        gltf::image::Source::Uri { uri, .. } => format!("{what} ('{}')", super::short(uri)),
+        gltf::image::Source::View { .. } => what,
+    };
+    let data = super::contained(|| gltf::image::Data::from_source(image.source(), Some(base), buffers), &source)?
+        .map_err(|e| format!("{source}: cannot load: {e}"))?;
+    let pixels = linear_pixels(&data).ok_or_else(|| format!("{source}: unsupported pixel format"))?;
+    let decoded = (data.width as usize, data.height as usize, Arc::new(pixels));
+    if let Some(slot) = images.get_mut(image.index()) {
+        *slot = Some(decoded.clone());
+    }
+    Ok(decoded)
+}
+
+/// 8- and 16-bit grey, grey–alpha, RGB and RGBA images, sRGB-decoded (alpha dropped), row by
+/// row from the top; `None` for float formats or data that does not fill the image.
+fn linear_pixels(data: &gltf::image::Data) -> Option<Vec<Rgb>> {
+    use gltf::image::Format as F;
+    let (channels, bytes) = match data.format {
+        F::R8 => (1, 1),
+        F::R8G8 => (2, 1),
+        F::R8G8B8 => (3, 1),
+        F::R8G8B8A8 => (4, 1),
+        F::R16 => (1, 2),
+        F::R16G16 => (2, 2),
+        F::R16G16B16 => (3, 2),
+        F::R16G16B16A16 => (4, 2),
+        F::R32G32B32FLOAT | F::R32G32B32A32FLOAT => return None,
+    };
+    let count = data.width as usize * data.height as usize;
+    let stride = channels * bytes;
+    if data.pixels.len() < count * stride {
+        return None;
+    }
+    let channel = |px: &[u8], c: usize| -> f32 {
+        let c = if channels < 3 { 0 } else { c };
+        if bytes == 1 {
+            srgb_to_linear(f32::from(px[c]) / 255.0)
+        } else {
+            srgb_to_linear(f32::from(u16::from_le_bytes([px[2 * c], px[2 * c + 1]])) / 65535.0)
+        }
+    };
+    Some(
+        data.pixels
+            .chunks_exact(stride)
+            .take(count)
+            .map(|px| Rgb::new(channel(px, 0), channel(px, 1), channel(px, 2)))
+            .collect(),
+    )
+}
