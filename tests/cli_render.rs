@@ -89,7 +89,10 @@ fn a_camera_inside_a_horizon_fails_with_its_position() {
     let text = "[spacetime]\ntype = \"schwarzschild\"\nmass = 1\n\
                 [camera]\nposition = [0, 0, 1.5]\nlook_at = [0, 0, 0]\nfov = 40\n";
     std::fs::write(&file, text).unwrap();
-    let out = nullpath().args(["render", file.to_str().unwrap(), "-o", dir.join("x.png").to_str().unwrap()]).output().unwrap();
+    let out = nullpath()
+        .args(["render", file.to_str().unwrap(), "-o", dir.join("x.png").to_str().unwrap()])
+        .output()
+        .unwrap();
     assert!(!out.status.success(), "a camera inside the horizon must fail");
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("inside.toml:5") && err.contains("camera.position"), "{err}");
