@@ -70,6 +70,48 @@ pub fn chosen_tracer<M: Capabilities>(m: &M) -> &'static str {
     m.choose_tracer(Chosen)
 }
 
+/// Runs [`check_plane_metric`] at world radius `rho` where the metric chooses the in-plane tracer.
+struct PlaneCheck {
+    rho: f64,
+}
+
+impl Tracers for PlaneCheck {
+    type Output = ();
+    fn straight(self) {}
+    fn in_plane<M: PlaneMetric>(self, metric: &M) {
+        check_plane_metric(metric, self.rho);
+    }
+    fn four_d<M: Metric>(self, _metric: &M) {}
+}
+
+/// The reduction of a static spherically symmetric metric to a ray's plane is consistent at
+/// world radius `rho` (where a static observer exists): the radius and its inverse agree, the
+/// Binet equation `u'' = −u + G(u)` is the derivative of its first integral
+/// (`u'' = ½ d(u'²)/du`, central differences), and a ray leaving the static observer in any
+/// direction, as [`PlaneStart::from_observer`](crate::geodesic::plane::PlaneStart) starts it,
+/// is null: on the first integral and with zero plane Hamiltonian.
+pub fn check_plane_metric<M: PlaneMetric>(m: &M, rho: f64) {
+    let Some(u) = m.u_of_world_radius(rho) else { return };
+    assert!((m.world_radius(u) - rho).abs() < 1e-12 * rho, "world radius at u = {u}: {}", m.world_radius(u));
+    let h = 1e-6 * u;
+    let fd = (m.world_radius(u + h) - m.world_radius(u - h)) / (2.0 * h);
+    let slope = m.world_radius_slope(u);
+    assert!((fd - slope).abs() < 1e-6 * slope.abs(), "dρ/du at u = {u}: {slope} vs {fd}");
+    for t in [0.3f64, 1.1, 1.5707963267948966, 2.4] {
+        let (d_r, d_phi) = (t.cos(), t.sin());
+        let du = -u * d_r / (m.radial_stretch(u) * d_phi);
+        let b = m.impact_factor(u) * d_phi;
+        let inv_b2 = 1.0 / (b * b);
+        let first = m.slope_squared(u, inv_b2);
+        assert!((du * du - first).abs() < 1e-10 * (du * du + u * u), "u'² at u = {u}, b = {b}: {} vs {first}", du * du);
+        let ham = m.plane_hamiltonian(u, du, b);
+        assert!(ham.abs() < 1e-10 * (1.0 + b * b * (du * du + u * u)), "plane H at u = {u}, b = {b}: {ham}");
+        let fd = (m.slope_squared(u + h, inv_b2) - m.slope_squared(u - h, inv_b2)) / (4.0 * h);
+        let binet = -u + m.binet_source(u, inv_b2);
+        assert!((fd - binet).abs() < 1e-6 * (u + binet.abs()), "u'' at u = {u}, b = {b}: {binet} vs {fd}");
+    }
+}
+
 /// The answers of [`Capabilities`] agree with the metric at world point `p` of `region`: outside
 /// horizons the static observer exists exactly where [`Capabilities::rest`] says one can stay at
 /// rest, its
@@ -103,6 +145,9 @@ pub fn check_capabilities<M: Capabilities>(m: &M, region: Region, p: [f64; 3]) {
             let proper = (quadratic(&g, &dx, &dx) + along * along).sqrt() / h;
             assert!((proper * kappa - 1.0).abs() < 1e-5, "κ at {p:?}: {kappa}, proper/world length {proper}");
         }
+    }
+    if rest.is_ok() {
+        m.choose_tracer(PlaneCheck { rho: crate::tensor::norm3(&p) });
     }
     if m.is_flat() {
         assert_eq!(m.observer_lapse(region, p), 1.0, "flat lapse");
