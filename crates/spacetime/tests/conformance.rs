@@ -17,11 +17,17 @@ fn examples() -> Vec<Spacetime> {
         Spacetime::kerr(1.0, 0.9).unwrap(),
         Spacetime::kerr(1.0, -0.5).unwrap(),
         Spacetime::ellis(1.0).unwrap(),
+        Spacetime::reissner_nordstrom(1.0, 0.8).unwrap(),
+        Spacetime::reissner_nordstrom(1.0, 1.0).unwrap(),
     ];
     // Compiles only while every variant is listed above.
     for s in &all {
         match s {
-            Spacetime::Minkowski(_) | Spacetime::Schwarzschild(_) | Spacetime::Kerr(_) | Spacetime::Ellis(_) => {}
+            Spacetime::Minkowski(_)
+            | Spacetime::Schwarzschild(_)
+            | Spacetime::Kerr(_)
+            | Spacetime::Ellis(_)
+            | Spacetime::ReissnerNordstrom(_) => {}
         }
     }
     all.to_vec()
@@ -64,6 +70,7 @@ fn every_metric_answers_the_renderer_consistently() {
                     Spacetime::Schwarzschild(m) => check_capabilities(m, region, p),
                     Spacetime::Kerr(m) => check_capabilities(m, region, p),
                     Spacetime::Ellis(m) => check_capabilities(m, region, p),
+                    Spacetime::ReissnerNordstrom(m) => check_capabilities(m, region, p),
                 }
             }
         }
@@ -78,6 +85,10 @@ fn where_nothing_can_stay_at_rest() {
     let rest = |s: &Spacetime, p: [f64; 3]| s.capabilities().rest(Region::Upper, p);
     assert!(matches!(rest(&hole, [1.9, 0.0, 0.0]), Err(NoRest::InsideHorizon { .. })));
     assert_eq!(rest(&hole, [2.1, 0.0, 0.0]), Ok(()));
+    // A charged hole's outer horizon r₊ = M + √(M² − Q²) = 1.6 for Q = 0.8 M.
+    let charged = Spacetime::reissner_nordstrom(1.0, 0.8).unwrap();
+    assert!(matches!(rest(&charged, [0.0, 1.59, 0.0]), Err(NoRest::InsideHorizon { .. })));
+    assert_eq!(rest(&charged, [0.0, 1.61, 0.0]), Ok(()));
     let kerr = Spacetime::kerr(1.0, 0.9).unwrap();
     // On the equator the spheroidal radius is √(x² − a²): the ergoregion reaches r = 2M
     // (x = 2.19), the horizon r₊ = 1.436 (x = 1.69).
@@ -101,4 +112,6 @@ fn tracers_fit_the_metrics() {
     assert_eq!(chosen_tracer(&spacetime::Schwarzschild::new(0.0)), "straight");
     assert_eq!(chosen_tracer(&spacetime::Kerr::new(1.0, 0.5)), "4-D");
     assert_eq!(chosen_tracer(&spacetime::Ellis::new(1.0)), "in-plane");
+    assert_eq!(chosen_tracer(&spacetime::ReissnerNordstrom::new(1.0, 0.9)), "in-plane");
+    assert_eq!(chosen_tracer(&spacetime::ReissnerNordstrom::new(0.0, 0.0)), "straight");
 }

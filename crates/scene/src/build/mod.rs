@@ -146,6 +146,7 @@ const SPACETIMES: &[(&str, &[&str], SpacetimeReader)] = &[
     ("schwarzschild", &["mass"], schwarzschild),
     ("kerr", &["mass", "spin", "axis"], kerr),
     ("ellis", &["throat"], ellis),
+    ("reissner-nordstrom", &["mass", "charge"], reissner_nordstrom),
 ];
 
 /// `[spacetime]`: the metric, validated by the physics crate, and its symmetry axis in the world
@@ -179,17 +180,28 @@ fn mass(t: &Table<'_>) -> Result<f64> {
     }
 }
 
+/// `key` (a spin or a charge), required with `|key| ≤ mass`.
+fn at_most_mass(t: &Table<'_>, key: &str, mass: f64) -> Result<f64> {
+    let v = t.req(key, |n| n.f64())?;
+    if v.abs() <= mass {
+        Ok(v)
+    } else {
+        Err(t.loc(key).err(format!("|{key}| must be ≤ mass = {}, got {}", num(mass), num(v))))
+    }
+}
+
 fn schwarzschild(t: &Table<'_>) -> Result<Spacetime> {
     checked(t, "mass", Spacetime::schwarzschild(mass(t)?))
 }
 
 fn kerr(t: &Table<'_>) -> Result<Spacetime> {
     let m = mass(t)?;
-    let spin = t.req("spin", |n| n.f64())?;
-    if spin.abs() > m {
-        return Err(t.loc("spin").err(format!("|spin| must be ≤ mass = {}, got {}", num(m), num(spin))));
-    }
-    checked(t, "spin", Spacetime::kerr(m, spin))
+    checked(t, "spin", Spacetime::kerr(m, at_most_mass(t, "spin", m)?))
+}
+
+fn reissner_nordstrom(t: &Table<'_>) -> Result<Spacetime> {
+    let m = mass(t)?;
+    checked(t, "charge", Spacetime::reissner_nordstrom(m, at_most_mass(t, "charge", m)?))
 }
 
 fn ellis(t: &Table<'_>) -> Result<Spacetime> {

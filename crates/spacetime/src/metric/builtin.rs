@@ -2,7 +2,7 @@
 //! construction.
 
 use super::capabilities::{Capabilities, Tracers};
-use super::{Ellis, Kerr, Metric, Minkowski, Region, Schwarzschild};
+use super::{Ellis, Kerr, Metric, Minkowski, Region, ReissnerNordstrom, Schwarzschild};
 
 /// A built-in spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -11,6 +11,7 @@ pub enum Spacetime {
     Schwarzschild(Schwarzschild),
     Kerr(Kerr),
     Ellis(Ellis),
+    ReissnerNordstrom(ReissnerNordstrom),
 }
 
 /// A parameter outside the spacetime's domain.
@@ -48,6 +49,15 @@ impl Spacetime {
         Ok(Spacetime::Kerr(Kerr::new(mass, spin)))
     }
 
+    /// Reissner–Nordström with `|charge| ≤ mass`.
+    pub fn reissner_nordstrom(mass: f64, charge: f64) -> Result<Self, ParameterError> {
+        let mass = finite_non_negative("mass", mass)?;
+        if !charge.is_finite() || charge.abs() > mass {
+            return Err(ParameterError(format!("charge must satisfy |charge| ≤ mass = {mass}, got {charge}")));
+        }
+        Ok(Spacetime::ReissnerNordstrom(ReissnerNordstrom::new(mass, charge)))
+    }
+
     pub fn ellis(throat: f64) -> Result<Self, ParameterError> {
         if !(throat.is_finite() && throat > 0.0) {
             return Err(ParameterError(format!("throat radius must be a finite number > 0, got {throat}")));
@@ -62,6 +72,7 @@ impl Spacetime {
             Spacetime::Schwarzschild(_) => "schwarzschild",
             Spacetime::Kerr(_) => "kerr",
             Spacetime::Ellis(_) => "ellis",
+            Spacetime::ReissnerNordstrom(_) => "reissner-nordstrom",
         }
     }
 
@@ -83,6 +94,7 @@ impl Spacetime {
             Spacetime::Schwarzschild(m) => m,
             Spacetime::Kerr(m) => m,
             Spacetime::Ellis(m) => m,
+            Spacetime::ReissnerNordstrom(m) => m,
         }
     }
 
@@ -94,6 +106,7 @@ impl Spacetime {
             Spacetime::Schwarzschild(m) => m.choose_tracer(tracers),
             Spacetime::Kerr(m) => m.choose_tracer(tracers),
             Spacetime::Ellis(m) => m.choose_tracer(tracers),
+            Spacetime::ReissnerNordstrom(m) => m.choose_tracer(tracers),
         }
     }
 
@@ -117,6 +130,8 @@ mod tests {
         assert!(Spacetime::kerr(1.0, 1.0).is_ok());
         assert!(Spacetime::kerr(1.0, -1.01).is_err());
         assert!(Spacetime::ellis(0.0).is_err());
+        assert!(Spacetime::reissner_nordstrom(1.0, -1.0).is_ok());
+        assert!(Spacetime::reissner_nordstrom(1.0, 1.01).is_err());
         assert_eq!(Spacetime::ellis(2.0).unwrap().name(), "ellis");
     }
 }

@@ -12,6 +12,7 @@ mod ellis;
 mod kerr;
 mod kerr_schild;
 mod minkowski;
+mod reissner_nordstrom;
 mod schwarzschild;
 pub(crate) mod user;
 
@@ -21,6 +22,7 @@ pub use ellis::Ellis;
 pub use kerr::Kerr;
 pub use kerr_schild::{KerrSchild, KerrSchildPoint};
 pub use minkowski::Minkowski;
+pub use reissner_nordstrom::ReissnerNordstrom;
 pub use schwarzschild::Schwarzschild;
 pub use user::{MetricFunction, Scalar, UserMetric};
 
