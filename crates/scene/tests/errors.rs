@@ -147,6 +147,10 @@ fn cameras_where_nothing_can_stay_at_rest() {
     let kerr = "[spacetime]\ntype = \"kerr\"\nmass = 1\nspin = 0.9\n";
     check(&format!("{kerr}{}", camera("[1.9, 0, 0]")), 6, "camera.position", &["inside the ergoregion"]);
     check(&format!("{kerr}{}", camera("[1.2, 0, 0]")), 6, "camera.position", &["inside the event horizon"]);
+    // Kerr–Newman (a = 0.6, Q = 0.5) on the equator: horizon to x = 1.73, ergoregion to x = 1.96.
+    let charged = "[spacetime]\ntype = \"kerr-newman\"\nmass = 1\nspin = 0.6\ncharge = 0.5\n";
+    check(&format!("{charged}{}", camera("[1.7, 0, 0]")), 7, "camera.position", &["inside the event horizon"]);
+    check(&format!("{charged}{}", camera("[0, 0, 1.9]")), 7, "camera.position", &["inside the ergoregion"]);
     // Above the pole, at the same distance, it is outside the ergoregion.
     assert!(scene::parse(&format!("{kerr}{}", camera("[0, 1.9, 0]")), "ok.toml", Path::new(".")).is_ok());
     let wormhole = "[spacetime]\ntype = \"ellis\"\nthroat = 1\n";
@@ -163,6 +167,10 @@ fn bad_spacetime_parameters() {
     check(&text, 4, "spacetime.charge", &["|charge| must be ≤ mass = 1, got -1.2"]);
     let text = format!("[spacetime]\ntype = \"reissner-nordstrom\"\nmass = 1\n{CAMERA}");
     check(&text, 1, "spacetime.charge", &["missing"]);
+    let text = format!("[spacetime]\ntype = \"kerr-newman\"\nmass = 1\nspin = 0.8\ncharge = 0.7\n{CAMERA}");
+    check(&text, 5, "spacetime.charge", &["spin² + charge² ≤ mass² = 1, got 0.8² + 0.7²"]);
+    let text = format!("[spacetime]\ntype = \"kerr-newman\"\nmass = 1\nspin = 1.1\ncharge = 0\n{CAMERA}");
+    check(&text, 4, "spacetime.spin", &["|spin| must be ≤ mass = 1, got 1.1"]);
     let text = format!("[spacetime]\ntype = \"ellis\"\nthroat = 0\n{CAMERA}");
     check(&text, 3, "spacetime.throat", &["> 0"]);
     let text = format!("[spacetime]\ntype = \"schwarzschild\"\nmass = 1\nspin = 0.5\n{CAMERA}");

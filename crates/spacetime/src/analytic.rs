@@ -185,6 +185,40 @@ pub fn kerr_equatorial_critical_impacts(mass: f64, spin: f64) -> (f64, f64) {
     }
 }
 
+/// Impact parameters `ξ = L_z/E` of the two circular equatorial photon orbits of a Kerr–Newman
+/// hole, `(prograde, retrograde)` signed as [`kerr_equatorial_critical_impacts`]'s. The orbits'
+/// radii are the roots outside the horizon of `r² − 3Mr + 2Q² ± 2a√(Mr − Q²) = 0` (+ prograde),
+/// found by bisection on `[r₊, 4M]`, and `ξ = (r² + a² − 4rΔ/Δ')/a`, `Δ = r² − 2Mr + a² + Q²`
+/// (from `R(r) = R'(r) = 0` of the radial potential `R = (r² + a² − aξ)² − Δ(ξ − a)²`; Kerr's
+/// formula at `Q = 0`).
+pub fn kerr_newman_equatorial_critical_impacts(mass: f64, spin: f64, charge: f64) -> (f64, f64) {
+    let (m, a, q2) = (mass, spin.abs(), charge * charge);
+    let horizon = m + (m * m - a * a - q2).sqrt();
+    let radius = |sign: f64| {
+        let f = |r: f64| r * r - 3.0 * m * r + 2.0 * q2 + sign * 2.0 * a * (m * r - q2).sqrt();
+        let (mut lo, mut hi) = (horizon, 4.0 * m);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if f(mid) < 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let xi = |r: f64| {
+        let delta = r * r - 2.0 * m * r + a * a + q2;
+        (r * r + a * a - 2.0 * r * delta / (r - m)) / a
+    };
+    let (pro, retro) = (xi(radius(1.0)), xi(radius(-1.0)));
+    if spin > 0.0 {
+        (pro, retro)
+    } else {
+        (-pro, -retro)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -253,6 +287,16 @@ mod tests {
         assert!((p - 2.845).abs() < 1e-3 && (r + 6.833).abs() < 1e-3, "{p} {r}");
         let (p, r) = kerr_equatorial_critical_impacts(1.0, 1e-7);
         assert!((p - 27f64.sqrt()).abs() < 1e-6 && (r + 27f64.sqrt()).abs() < 1e-6);
+    }
+
+    /// Without charge the Kerr–Newman orbits are Kerr's closed forms.
+    #[test]
+    fn kerr_newman_critical_impacts_reduce_to_kerrs() {
+        for spin in [0.5, -0.9] {
+            let (p, r) = kerr_equatorial_critical_impacts(1.0, spin);
+            let (pn, rn) = kerr_newman_equatorial_critical_impacts(1.0, spin, 0.0);
+            assert!((p - pn).abs() < 1e-12 && (r - rn).abs() < 1e-12, "a = {spin}: {p} {r} vs {pn} {rn}");
+        }
     }
 
     #[test]

@@ -18,6 +18,7 @@ pub mod tensor;
 
 pub use geodesic::{Fate, Integrator, State, Trace, TraceSettings, Visit};
 pub use metric::{
-    Ellis, Kerr, Metric, MetricFunction, Minkowski, Region, ReissnerNordstrom, Schwarzschild, Spacetime, UserMetric,
+    Ellis, Kerr, KerrNewman, Metric, MetricFunction, Minkowski, Region, ReissnerNordstrom, Schwarzschild, Spacetime,
+    UserMetric,
 };
 pub use observer::Tetrad;

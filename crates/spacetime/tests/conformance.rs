@@ -19,6 +19,8 @@ fn examples() -> Vec<Spacetime> {
         Spacetime::ellis(1.0).unwrap(),
         Spacetime::reissner_nordstrom(1.0, 0.8).unwrap(),
         Spacetime::reissner_nordstrom(1.0, 1.0).unwrap(),
+        Spacetime::kerr_newman(1.0, 0.6, 0.5).unwrap(),
+        Spacetime::kerr_newman(1.0, -0.8, 0.6).unwrap(),
     ];
     // Compiles only while every variant is listed above.
     for s in &all {
@@ -27,7 +29,8 @@ fn examples() -> Vec<Spacetime> {
             | Spacetime::Schwarzschild(_)
             | Spacetime::Kerr(_)
             | Spacetime::Ellis(_)
-            | Spacetime::ReissnerNordstrom(_) => {}
+            | Spacetime::ReissnerNordstrom(_)
+            | Spacetime::KerrNewman(_) => {}
         }
     }
     all.to_vec()
@@ -71,6 +74,7 @@ fn every_metric_answers_the_renderer_consistently() {
                     Spacetime::Kerr(m) => check_capabilities(m, region, p),
                     Spacetime::Ellis(m) => check_capabilities(m, region, p),
                     Spacetime::ReissnerNordstrom(m) => check_capabilities(m, region, p),
+                    Spacetime::KerrNewman(m) => check_capabilities(m, region, p),
                 }
             }
         }
@@ -96,6 +100,12 @@ fn where_nothing_can_stay_at_rest() {
     assert!(matches!(rest(&kerr, [1.2, 0.0, 0.0]), Err(NoRest::InsideHorizon { .. })));
     assert_eq!(rest(&kerr, [2.3, 0.0, 0.0]), Ok(()));
     assert_eq!(rest(&kerr, [0.0, 0.0, 1.9]), Ok(()), "above the pole, outside the ergoregion");
+    // Kerr–Newman with a = 0.6, Q = 0.5: on the equator the ergoregion reaches
+    // r = M + √(M² − Q²) = 1.866 (x = 1.960), the horizon r₊ = M + √(M² − a² − Q²) = 1.624 (x = 1.732).
+    let charged = Spacetime::kerr_newman(1.0, 0.6, 0.5).unwrap();
+    assert_eq!(rest(&charged, [1.9, 0.0, 0.0]), Err(NoRest::InsideErgoregion));
+    assert!(matches!(rest(&charged, [1.7, 0.0, 0.0]), Err(NoRest::InsideHorizon { .. })));
+    assert_eq!(rest(&charged, [2.0, 0.0, 0.0]), Ok(()));
     let wormhole = Spacetime::ellis(1.0).unwrap();
     for region in [Region::Upper, Region::Lower] {
         assert!(matches!(wormhole.capabilities().rest(region, [0.99, 0.0, 0.0]), Err(NoRest::OffChart { .. })));
@@ -114,4 +124,5 @@ fn tracers_fit_the_metrics() {
     assert_eq!(chosen_tracer(&spacetime::Ellis::new(1.0)), "in-plane");
     assert_eq!(chosen_tracer(&spacetime::ReissnerNordstrom::new(1.0, 0.9)), "in-plane");
     assert_eq!(chosen_tracer(&spacetime::ReissnerNordstrom::new(0.0, 0.0)), "straight");
+    assert_eq!(chosen_tracer(&spacetime::KerrNewman::new(1.0, 0.6, 0.5)), "4-D");
 }

@@ -135,10 +135,9 @@ fn minkowski_rays_are_not_bent() {
     }
 }
 
-/// Bisects the capture threshold of equatorial rays on one side of a Kerr hole.
-fn kerr_critical_impact(spin: f64, side: f64) -> f64 {
-    let hole = Spacetime::kerr(1.0, spin).unwrap();
-    let captured = |b: f64| scatter(&hole, side * b, 0.0, ADAPTIVE).fate == Fate::Captured;
+/// Bisects the capture threshold of equatorial rays on one side of a spinning hole of mass 1.
+fn equatorial_critical_impact(hole: &Spacetime, side: f64) -> f64 {
+    let captured = |b: f64| scatter(hole, side * b, 0.0, ADAPTIVE).fate == Fate::Captured;
     let (mut lo, mut hi) = (1.0, 10.0);
     assert!(captured(lo) && !captured(hi));
     while hi - lo > 1e-9 * hi {
@@ -156,10 +155,28 @@ fn kerr_critical_impact(spin: f64, side: f64) -> f64 {
 fn kerr_shadow_edges_match_bardeens_critical_curve() {
     for spin in [0.5, 0.9] {
         let (pro, retro) = analytic::kerr_equatorial_critical_impacts(1.0, spin);
-        let found_pro = kerr_critical_impact(spin, 1.0);
-        let found_retro = kerr_critical_impact(spin, -1.0);
+        let hole = Spacetime::kerr(1.0, spin).unwrap();
+        let (found_pro, found_retro) =
+            (equatorial_critical_impact(&hole, 1.0), equatorial_critical_impact(&hole, -1.0));
         assert!(((found_pro - pro) / pro).abs() < 1e-6, "a = {spin}: prograde {found_pro} vs {pro}");
         assert!(((found_retro - retro) / retro).abs() < 1e-6, "a = {spin}: retrograde {found_retro} vs {retro}");
+    }
+}
+
+/// A charged spinning hole captures equatorial rays below the impact parameters of its circular
+/// photon orbits, on each side (to 10⁻⁶).
+#[test]
+fn kerr_newman_shadow_edges_match_its_equatorial_photon_orbits() {
+    for (spin, charge) in [(0.6, 0.5), (-0.5, 0.7), (0.8, 0.5)] {
+        let (pro, retro) = analytic::kerr_newman_equatorial_critical_impacts(1.0, spin, charge);
+        let hole = Spacetime::kerr_newman(1.0, spin, charge).unwrap();
+        // Rays with b > 0 orbit with a hole of positive spin, against one of negative spin.
+        let (plus, minus) = if spin > 0.0 { (pro, retro) } else { (retro, pro) };
+        let (found_plus, found_minus) =
+            (equatorial_critical_impact(&hole, 1.0), equatorial_critical_impact(&hole, -1.0));
+        let what = format!("a = {spin}, Q = {charge}");
+        assert!(((found_plus - plus) / plus).abs() < 1e-6, "{what}: b > 0 side {found_plus} vs {plus}");
+        assert!(((found_minus - minus) / minus).abs() < 1e-6, "{what}: b < 0 side {found_minus} vs {minus}");
     }
 }
 

@@ -147,6 +147,7 @@ const SPACETIMES: &[(&str, &[&str], SpacetimeReader)] = &[
     ("kerr", &["mass", "spin", "axis"], kerr),
     ("ellis", &["throat"], ellis),
     ("reissner-nordstrom", &["mass", "charge"], reissner_nordstrom),
+    ("kerr-newman", &["mass", "spin", "charge", "axis"], kerr_newman),
 ];
 
 /// `[spacetime]`: the metric, validated by the physics crate, and its symmetry axis in the world
@@ -202,6 +203,13 @@ fn kerr(t: &Table<'_>) -> Result<Spacetime> {
 fn reissner_nordstrom(t: &Table<'_>) -> Result<Spacetime> {
     let m = mass(t)?;
     checked(t, "charge", Spacetime::reissner_nordstrom(m, at_most_mass(t, "charge", m)?))
+}
+
+/// Each of `spin` and `charge` at most the mass, then `spin² + charge² ≤ mass²` (at `charge`).
+fn kerr_newman(t: &Table<'_>) -> Result<Spacetime> {
+    let m = mass(t)?;
+    let spin = at_most_mass(t, "spin", m)?;
+    checked(t, "charge", Spacetime::kerr_newman(m, spin, at_most_mass(t, "charge", m)?))
 }
 
 fn ellis(t: &Table<'_>) -> Result<Spacetime> {

@@ -2,7 +2,7 @@
 //! construction.
 
 use super::capabilities::{Capabilities, Tracers};
-use super::{Ellis, Kerr, Metric, Minkowski, Region, ReissnerNordstrom, Schwarzschild};
+use super::{Ellis, Kerr, KerrNewman, Metric, Minkowski, Region, ReissnerNordstrom, Schwarzschild};
 
 /// A built-in spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -12,6 +12,7 @@ pub enum Spacetime {
     Kerr(Kerr),
     Ellis(Ellis),
     ReissnerNordstrom(ReissnerNordstrom),
+    KerrNewman(KerrNewman),
 }
 
 /// A parameter outside the spacetime's domain.
@@ -58,6 +59,18 @@ impl Spacetime {
         Ok(Spacetime::ReissnerNordstrom(ReissnerNordstrom::new(mass, charge)))
     }
 
+    /// Kerr–Newman with `spin² + charge² ≤ mass²`; spin along +z as [`Spacetime::kerr`]'s.
+    pub fn kerr_newman(mass: f64, spin: f64, charge: f64) -> Result<Self, ParameterError> {
+        let mass = finite_non_negative("mass", mass)?;
+        if !(spin.is_finite() && charge.is_finite() && spin * spin + charge * charge <= mass * mass) {
+            return Err(ParameterError(format!(
+                "spin and charge must satisfy spin² + charge² ≤ mass² = {}, got {spin}² + {charge}²",
+                mass * mass
+            )));
+        }
+        Ok(Spacetime::KerrNewman(KerrNewman::new(mass, spin, charge)))
+    }
+
     pub fn ellis(throat: f64) -> Result<Self, ParameterError> {
         if !(throat.is_finite() && throat > 0.0) {
             return Err(ParameterError(format!("throat radius must be a finite number > 0, got {throat}")));
@@ -73,6 +86,7 @@ impl Spacetime {
             Spacetime::Kerr(_) => "kerr",
             Spacetime::Ellis(_) => "ellis",
             Spacetime::ReissnerNordstrom(_) => "reissner-nordstrom",
+            Spacetime::KerrNewman(_) => "kerr-newman",
         }
     }
 
@@ -95,6 +109,7 @@ impl Spacetime {
             Spacetime::Kerr(m) => m,
             Spacetime::Ellis(m) => m,
             Spacetime::ReissnerNordstrom(m) => m,
+            Spacetime::KerrNewman(m) => m,
         }
     }
 
@@ -107,6 +122,7 @@ impl Spacetime {
             Spacetime::Kerr(m) => m.choose_tracer(tracers),
             Spacetime::Ellis(m) => m.choose_tracer(tracers),
             Spacetime::ReissnerNordstrom(m) => m.choose_tracer(tracers),
+            Spacetime::KerrNewman(m) => m.choose_tracer(tracers),
         }
     }
 
@@ -132,6 +148,9 @@ mod tests {
         assert!(Spacetime::ellis(0.0).is_err());
         assert!(Spacetime::reissner_nordstrom(1.0, -1.0).is_ok());
         assert!(Spacetime::reissner_nordstrom(1.0, 1.01).is_err());
+        assert!(Spacetime::kerr_newman(1.0, 0.6, -0.8).is_ok());
+        assert!(Spacetime::kerr_newman(1.0, 0.6, 0.81).is_err());
+        assert!(Spacetime::kerr_newman(1.0, f64::NAN, 0.0).is_err());
         assert_eq!(Spacetime::ellis(2.0).unwrap().name(), "ellis");
     }
 }
