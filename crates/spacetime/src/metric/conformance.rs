@@ -97,7 +97,7 @@ pub fn check_plane_metric<M: PlaneMetric>(m: &M, rho: f64) {
     let fd = (m.world_radius(u + h) - m.world_radius(u - h)) / (2.0 * h);
     let slope = m.world_radius_slope(u);
     assert!((fd - slope).abs() < 1e-6 * slope.abs(), "dρ/du at u = {u}: {slope} vs {fd}");
-    for t in [0.3f64, 1.1, 1.5707963267948966, 2.4] {
+    for t in [0.3, 1.1, std::f64::consts::FRAC_PI_2, 2.4f64] {
         let (d_r, d_phi) = (t.cos(), t.sin());
         let du = -u * d_r / (m.radial_stretch(u) * d_phi);
         let b = m.impact_factor(u) * d_phi;
