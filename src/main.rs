@@ -33,6 +33,9 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if !matches!(cli.command, Command::Preview(_)) {
+        quit_on_closed_pipe();
+    }
     let result = match cli.command {
         Command::Render(args) => commands::render::run(&args),
         Command::Animate(args) => commands::animate::run(&args).map_err(Failure::from),
@@ -49,4 +52,13 @@ fn main() -> ExitCode {
             ExitCode::from(code)
         }
     }
+}
+
+/// A closed pipe (`nullpath info image.png | head`) ends the process quietly with status 141, as
+/// it ends other command-line tools, instead of making `println!` panic (Rust ignores SIGPIPE).
+/// Not for the preview, whose server must outlive browsers that hang up.
+fn quit_on_closed_pipe() {
+    let always = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
+    // Should the handler not install, a closed pipe panics as before: nothing worse to report.
+    let _ = signal_hook::flag::register_conditional_shutdown(signal_hook::consts::SIGPIPE, 141, always);
 }

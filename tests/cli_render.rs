@@ -79,6 +79,27 @@ fn bad_input_fails_with_a_precise_message_and_no_panic() {
     assert!(String::from_utf8_lossy(&out.stderr).contains(":5"), "{}", String::from_utf8_lossy(&out.stderr));
 }
 
+/// A camera inside a black hole's horizon is refused before rendering (it used to give a
+/// black image and success).
+#[test]
+fn a_camera_inside_a_horizon_fails_with_its_position() {
+    let dir = temp("horizon");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("inside.toml");
+    let text = "[spacetime]\ntype = \"schwarzschild\"\nmass = 1\n\
+                [camera]\nposition = [0, 0, 1.5]\nlook_at = [0, 0, 0]\nfov = 40\n";
+    std::fs::write(&file, text).unwrap();
+    let out = nullpath()
+        .args(["render", file.to_str().unwrap(), "-o", dir.join("x.png").to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(!out.status.success(), "a camera inside the horizon must fail");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("inside.toml:5") && err.contains("camera.position"), "{err}");
+    assert!(err.contains("inside the event horizon") && !err.contains("panicked"), "{err}");
+    assert!(!dir.join("x.png").exists(), "no image is written");
+}
+
 #[cfg(unix)]
 #[test]
 fn interrupting_a_render_keeps_what_was_computed() {

@@ -162,11 +162,22 @@ fn keyframed_pose(keys: &[Keyframe], time: f64) -> Pose {
 }
 
 impl CameraRig {
+    /// Whether an observer can stay at rest where the camera is at `time` (its velocity, if any,
+    /// is measured against that observer), in `spacetime` with its symmetry axis along the world
+    /// vector `axis`; the error says why not and where.
+    pub fn at_rest(&self, time: f64, spacetime: &Spacetime, axis: Vec3) -> Result<(), String> {
+        let position = self.path.pose(time).position;
+        let answers = spacetime.capabilities();
+        let chart = if answers.is_spherically_symmetric() { position } else { chart_rotation(axis) * position };
+        answers.rest(self.region, chart.to_array()).map_err(|e| format!("the camera at {position} {e}"))
+    }
+
     /// The camera at `time` (seconds of animation) in `spacetime`, whose symmetry axis points
-    /// along the world vector `axis`. Errors name the time: a pose the camera cannot take, or a
-    /// motion as fast as light.
+    /// along the world vector `axis`. Errors name the time: a place where nothing can stay at
+    /// rest, a pose the camera cannot take, or a motion as fast as light.
     pub fn camera_at(&self, time: f64, spacetime: &Spacetime, axis: Vec3) -> Result<Camera, String> {
         let at = |e: String| format!("camera at t = {time} s: {e}");
+        self.at_rest(time, spacetime, axis).map_err(at)?;
         let pose = self.path.pose(time);
         let projection = match self.projection {
             Projection::Perspective(lens) => {

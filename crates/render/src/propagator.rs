@@ -24,13 +24,12 @@ use crate::geometry::{Ray, Vec3};
 use crate::settings::Intersection;
 use crate::shape::SurfaceHit;
 use crate::world::{Blockers, FlatBlockers, World};
-use spacetime::geodesic::connect::{connect_along, Connection, Way, Waypoints};
+use spacetime::geodesic::connect::{Connection, Connector, Way, Waypoints};
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
 use spacetime::geodesic::tangent_triangle::tangent_triangle;
 use spacetime::geodesic::{HamiltonianStep, HamiltonianTracer, Integrator, State, TraceSettings};
-use spacetime::metric::KerrSchild;
-use spacetime::metric::Metric;
-use spacetime::{Fate, Kerr, Region, Spacetime, Tetrad, Visit};
+use spacetime::metric::{LocalFrame, Metric, Tracers};
+use spacetime::{Fate, Region, Spacetime, Tetrad, Visit};
 
 /// Where a traced ray ended.
 #[derive(Clone, Copy, Debug)]
@@ -70,10 +69,17 @@ pub struct Arrival {
 /// curve's. On the black-hole room a crossing takes 2.3 points on the curve (at 10⁻⁴, 0.6 more).
 const CROSSING_TOLERANCE: f64 = 1e-2;
 
-/// How rays are propagated; built once per render.
+/// How rays are propagated; built once per render. Everything it knows of the spacetime it
+/// asks the spacetime ([`Capabilities`]); the answers asked along every step are kept here.
 #[derive(Clone, Debug)]
 pub struct Propagator {
     spacetime: Spacetime,
+    /// Whether light goes straight ([`Capabilities::is_flat`]).
+    flat: bool,
+    /// [`Capabilities::no_turning_beyond`], asked of pieces of every curved step.
+    no_turning_beyond: Option<f64>,
+    /// The spacetime's light connector, where it has one and rays are traced by chords.
+    connector: Option<Connector>,
     /// The 4-D tracer's settings; its steps move at most half the distance to the centre.
     trace: TraceSettings,
     /// The in-plane tracer's: its steps sweep at most a radian of azimuth (the Taylor series'
@@ -86,8 +92,9 @@ pub struct Propagator {
     /// (always, except in tests that compare with the tube test alone).
     bound_arcs: bool,
     /// Rotation from world axes to the chart's, for metrics with an axis (Kerr spins about the
-    /// chart's z; a scene may point the spin anywhere).
-    to_chart: glam::DQuat,
+    /// chart's z; a scene may point the spin anywhere); `None` for spherically symmetric ones,
+    /// whose world points are the chart's as they are.
+    to_chart: Option<glam::DQuat>,
 }
 
 /// The rotation from world axes to the chart's for a spacetime whose symmetry axis points along
@@ -118,14 +125,41 @@ impl Propagator {
         };
         let plane_trace = TraceSettings { max_step_fraction: trace.max_step_fraction.max(1.0), ..trace };
         let epsilon = 1e-4 * scene_radius.max(scale);
-        let to_chart = glam::DQuat::IDENTITY;
-        Self { spacetime, trace, plane_trace, epsilon, intersection, bound_arcs: true, to_chart }
+        let answers = spacetime.capabilities();
+        let connector = answers.light_connector().filter(|_| matches!(intersection, Intersection::Chord));
+        let (flat, no_turning_beyond) = (answers.is_flat(), answers.no_turning_beyond());
+        let to_chart = (!answers.is_spherically_symmetric()).then_some(glam::DQuat::IDENTITY);
+        Self {
+            spacetime,
+            flat,
+            no_turning_beyond,
+            connector,
+            trace,
+            plane_trace,
+            epsilon,
+            intersection,
+            bound_arcs: true,
+            to_chart,
+        }
     }
 
-    /// Points the spacetime's symmetry axis (a Kerr hole's spin) along the world vector `axis`.
+    /// Points the spacetime's symmetry axis (a Kerr hole's spin) along the world vector `axis`
+    /// (nothing to point in a spherically symmetric spacetime).
     pub fn with_axis(mut self, axis: Vec3) -> Self {
-        self.to_chart = chart_rotation(axis);
+        if self.to_chart.is_some() {
+            self.to_chart = Some(chart_rotation(axis));
+        }
         self
+    }
+
+    /// World vector `v` in the chart's axes.
+    fn to_chart(&self, v: Vec3) -> Vec3 {
+        self.to_chart.map_or(v, |q| q * v)
+    }
+
+    /// Chart vector `v` in the world's axes.
+    fn to_world(&self, v: Vec3) -> Vec3 {
+        self.to_chart.map_or(v, |q| q.inverse() * v)
     }
 
     /// Chord tolerance ε, in scene units: 10⁻⁴ of the scene's radius.
@@ -139,57 +173,26 @@ impl Propagator {
     }
 
     pub fn is_flat(&self) -> bool {
-        match self.spacetime {
-            Spacetime::Minkowski(_) => true,
-            Spacetime::Schwarzschild(m) => m.mass == 0.0,
-            Spacetime::Kerr(m) => m.mass == 0.0,
-            Spacetime::Ellis(_) => false,
-        }
+        self.flat
     }
 
-    /// The radial scale `κ = dρ/dl` of the static frame at world point `p` (1 in flat space).
-    fn radial_scale(&self, p: Vec3) -> f64 {
-        fn at<M: PlaneMetric>(m: &M, p: Vec3) -> f64 {
-            m.u_of_world_radius(p.length()).map_or(1.0, |u| m.radial_scale(u))
-        }
-        match &self.spacetime {
-            Spacetime::Schwarzschild(m) if m.mass > 0.0 => at(m, p),
-            Spacetime::Ellis(m) => at(m, p),
-            _ => 1.0,
-        }
-    }
-
-    /// The lapse `√(−g_tt)` of the static observer at world point `p`: it measures frequencies
+    /// The lapse of the local observer at world point `p` of `region`: it measures frequencies
     /// `1/lapse` times those measured at infinity (1 in flat space and in the Ellis wormhole).
-    pub fn lapse(&self, p: Vec3) -> f64 {
-        match &self.spacetime {
-            Spacetime::Schwarzschild(m) if m.mass > 0.0 => m.u_of_world_radius(p.length()).map_or(1.0, |u| m.lapse(u)),
-            _ => 1.0,
-        }
+    pub fn lapse(&self, region: Region, p: Vec3) -> f64 {
+        self.spacetime.capabilities().observer_lapse(region, self.to_chart(p).to_array())
     }
 
     /// The largest impact parameter of a ray from infinity that comes within world radius `radius`
-    /// of the centre, in the static spacetimes (Kerr is not one; it gets a flat bound). A ray of
-    /// impact parameter `b = L/E` turns where `E²/A = L²/r²`, i.e. at `b = r/lapse(r)`, which grows
-    /// with `r` outside a Schwarzschild hole's photon sphere `r = 3M` (below it, rays of `b < 3√3 M`
-    /// are captured, so the bound at 3M covers them). In the Ellis wormhole the areal radius is
-    /// the world's and the lapse 1: `b = radius`.
-    pub fn impact_bound(&self, radius: f64) -> f64 {
-        match &self.spacetime {
-            Spacetime::Schwarzschild(m) if m.mass > 0.0 => {
-                let r = radius.max(3.0 * m.mass);
-                r / (1.0 - 2.0 * m.mass / r).sqrt()
-            }
-            _ => radius,
-        }
+    /// of the centre ([`Capabilities::impact_bound`]); `None` where the spacetime has none.
+    pub fn impact_bound(&self, radius: f64) -> Option<f64> {
+        self.spacetime.capabilities().impact_bound(radius)
     }
 
-    /// Whether [`Propagator::connect`] can join points by geodesics here: Schwarzschild with mass,
-    /// traced by the chord method. (Kerr and the Ellis wormhole have no connection solver yet;
-    /// the poster's intersection test would not find the same rays.)
+    /// Whether [`Propagator::connect`] can join points by geodesics here: where the spacetime
+    /// has a light connector (Schwarzschild with mass), and rays are traced by the chord method
+    /// (the poster's intersection test would not find the same rays).
     pub fn connects(&self) -> bool {
-        matches!(self.spacetime, Spacetime::Schwarzschild(m) if m.mass > 0.0)
-            && matches!(self.intersection, Intersection::Chord)
+        self.connector.is_some()
     }
 
     /// The light ray from world point `from` to world point `to` that goes `way` round the hole,
@@ -204,23 +207,19 @@ impl Propagator {
         facing: Option<Vec3>,
         waypoints: &mut Waypoints,
     ) -> Option<Connection> {
-        match self.spacetime {
-            Spacetime::Schwarzschild(m) if self.connects() => {
-                connect_along(&m, from.to_array(), to.to_array(), way, facing.map(|n| n.to_array()), waypoints)
-            }
-            _ => None,
-        }
+        let connector = self.connector.as_ref()?;
+        connector.connect_along(from.to_array(), to.to_array(), way, facing.map(|n| n.to_array()), waypoints)
     }
 
     /// Whether the piece of a ray between world points `a` and `b` stays, with a margin ε, inside
     /// the ball about the centre that no object of `region` reaches into, so that nothing can be
-    /// in its way. In Schwarzschild spacetime a ray outside the photon sphere never reaches a
-    /// greatest distance from the centre (there `u'' = −u + 3Mu² < 0`, so `u = 1/r` has no
-    /// minimum): a piece of it is no farther out than its farther end, or than `3M`.
+    /// in its way. Beyond the radius [`Capabilities::no_turning_beyond`] (the photon sphere) a
+    /// ray never reaches a greatest distance from the centre: a piece of it is no farther out
+    /// than its farther end, or than that radius.
     pub fn in_empty_ball(&self, world: &World, region: Region, a: Vec3, b: Vec3) -> bool {
-        let Spacetime::Schwarzschild(m) = self.spacetime else { return false };
+        let Some(turning) = self.no_turning_beyond else { return false };
         let radius = world.empty_radius(region) - self.epsilon;
-        3.0 * m.mass < radius && a.length_squared().max(b.length_squared()) < radius * radius
+        turning < radius && a.length_squared().max(b.length_squared()) < radius * radius
     }
 
     /// Whether a triangle stays, with a margin ε, inside the box about the centre that no object
@@ -238,34 +237,35 @@ impl Propagator {
     /// Unit normal in the local frame at `p` for a surface with world normal `n`: the normal is a
     /// covector (the gradient of the surface function), so its radial component scales by `κ`.
     pub fn local_normal(&self, region: Region, p: Vec3, n: Vec3) -> Vec3 {
-        if let Spacetime::Kerr(m) = self.spacetime {
-            let back = self.to_chart.inverse();
-            return back * kerr_local_normal(&m, region, self.to_chart * p, self.to_chart * n);
+        match self.local_frame(region, p) {
+            LocalFrame::Radial { kappa } => {
+                if kappa == 1.0 || p == Vec3::ZERO {
+                    return n;
+                }
+                // n + (κ − 1)(n · p̂) p̂, with p̂ = p/|p| folded into one factor of p: no square
+                // root of p's own (the chain to the result is κ's square roots and the last
+                // normalisation).
+                (n + ((kappa - 1.0) * n.dot(p) / p.length_squared()) * p).normalize()
+            }
+            LocalFrame::Tetrad { frame, .. } => {
+                // Frame components of the gradient covector (0, n): n_(a) = e_(a)^i n_i.
+                let n = self.to_chart(n);
+                let c = |a: usize| frame.e[a][1] * n.x + frame.e[a][2] * n.y + frame.e[a][3] * n.z;
+                self.to_world(Vec3::new(c(1), c(2), c(3)).normalize())
+            }
+            LocalFrame::None => self.to_world(self.to_chart(n)),
         }
-        let kappa = self.radial_scale(p);
-        if kappa == 1.0 || p == Vec3::ZERO {
-            return n;
-        }
-        // n + (κ − 1)(n · p̂) p̂, with p̂ = p/|p| folded into one factor of p: no square root
-        // of p's own (the chain to the result is κ's square roots and the last normalisation).
-        (n + ((kappa - 1.0) * n.dot(p) / p.length_squared()) * p).normalize()
+    }
+
+    /// The local observer's frame at world point `p` of `region` ([`Capabilities::local_frame`]).
+    fn local_frame(&self, region: Region, p: Vec3) -> LocalFrame {
+        self.spacetime.capabilities().local_frame(region, self.to_chart(p).to_array())
     }
 
     /// Traces the ray that leaves world point `origin` of `region` along the local-frame unit
-    /// direction `direction`, to its end.
+    /// direction `direction`, to its end, with the tracer the spacetime chooses.
     pub fn trace(&self, world: &World, region: Region, origin: Vec3, direction: Vec3) -> RayEnd {
-        match &self.spacetime {
-            Spacetime::Minkowski(_) => straight(world, region, origin, direction),
-            Spacetime::Schwarzschild(m) if m.mass == 0.0 => straight(world, region, origin, direction),
-            Spacetime::Kerr(m) if m.mass == 0.0 => straight(world, region, origin, direction),
-            // The poster integrated Hamilton's equations with RK4 in an affine parameter.
-            Spacetime::Schwarzschild(m) if matches!(self.intersection, Intersection::Poster { .. }) => {
-                self.hamiltonian(m, world, region, origin, direction)
-            }
-            Spacetime::Schwarzschild(m) => self.in_plane(m, world, region, origin, direction),
-            Spacetime::Ellis(m) => self.in_plane(m, world, region, origin, direction),
-            Spacetime::Kerr(m) => self.hamiltonian(m, world, region, origin, direction),
-        }
+        self.spacetime.choose_tracer(Ray4 { propagator: self, world, region, origin, direction })
     }
 
     fn in_plane<M: PlaneMetric>(
@@ -522,7 +522,7 @@ impl Propagator {
 
     /// The 4-D tracer, in the chart's axes: world vectors are rotated in with `to_chart` and
     /// chord points rotated back out.
-    fn hamiltonian<M: KerrSchild>(
+    fn hamiltonian<M: Metric>(
         &self,
         metric: &M,
         world: &World,
@@ -530,15 +530,16 @@ impl Propagator {
         origin: Vec3,
         direction: Vec3,
     ) -> RayEnd {
-        let (to_chart, to_world) = (self.to_chart, self.to_chart.inverse());
-        let Some(x) = metric.world_to_chart(region, (to_chart * origin).to_array(), 0.0) else { return RayEnd::Failed };
+        let Some(x) = metric.world_to_chart(region, self.to_chart(origin).to_array(), 0.0) else {
+            return RayEnd::Failed;
+        };
         let Ok(frame) = Tetrad::local_observer(metric, &x) else { return RayEnd::Captured };
-        let p = frame.backward_momentum(&metric.metric(&x), (to_chart * direction).to_array(), 1.0);
+        let p = frame.backward_momentum(&metric.metric(&x), self.to_chart(direction).to_array(), 1.0);
         let mut arrival: Option<(ChordHit, State)> = None;
         let trace = HamiltonianTracer::new(metric, State { x, p }, self.trace).run(|step: &HamiltonianStep| {
             let knot = |theta: f64| {
                 let s = step.at(theta);
-                Knot { theta, at: to_world * Vec3::new(s.x[1], s.x[2], s.x[3]), tangent: None }
+                Knot { theta, at: self.to_world(Vec3::new(s.x[1], s.x[2], s.x[3])), tangent: None }
             };
             let curved = CurvedStep { knot: &knot, motion: None, axis: None, leaves_origin: false };
             match self.curved(world, region, &curved, knot(0.0), knot(1.0)) {
@@ -556,14 +557,14 @@ impl Propagator {
                 let (n, energy) = local.backward_direction(&state.p);
                 let hit = world.surface(region, found.object, &found.chord, found.t);
                 let ng_local = self.local_normal(region, hit.p, hit.ng);
-                let direction = from_chord_side(&hit, ng_local, found.chord.dir, to_world * Vec3::from_array(n));
+                let direction = from_chord_side(&hit, ng_local, found.chord.dir, self.to_world(Vec3::from_array(n)));
                 let (object, distance) = (found.object, found.t);
                 RayEnd::Hit(Arrival { region, object, hit, ng_local, direction, distance, energy, swept: None })
             }
             // A static observer at infinity measures the conserved `p_t` of the backward ray.
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
-                let end = to_world * Vec3::new(trace.end.x[1], trace.end.x[2], trace.end.x[3]);
-                self.beyond(world, region, end, to_world * Vec3::from_array(direction), false, p[0])
+                let end = self.to_world(Vec3::new(trace.end.x[1], trace.end.x[2], trace.end.x[3]));
+                self.beyond(world, region, end, self.to_world(Vec3::from_array(direction)), false, p[0])
             }
             Fate::Captured => RayEnd::Captured,
             Fate::Failed(_) => RayEnd::Failed,
@@ -670,28 +671,60 @@ fn straight(world: &World, region: Region, origin: Vec3, direction: Vec3) -> Ray
     }
 }
 
-fn kerr_local_normal(metric: &Kerr, region: Region, p: Vec3, n: Vec3) -> Vec3 {
-    let Some(x) = metric.world_to_chart(region, p.to_array(), 0.0) else { return n };
-    let Ok(frame) = Tetrad::local_observer(metric, &x) else { return n };
-    // Frame components of the gradient covector (0, n): n_(a) = e_(a)^i n_i.
-    let c = |a: usize| frame.e[a][1] * n.x + frame.e[a][2] * n.y + frame.e[a][3] * n.z;
-    Vec3::new(c(1), c(2), c(3)).normalize()
+/// A ray to trace, handed to the tracer the spacetime chooses ([`Spacetime::choose_tracer`]).
+struct Ray4<'a> {
+    propagator: &'a Propagator,
+    world: &'a World,
+    region: Region,
+    origin: Vec3,
+    direction: Vec3,
+}
+
+impl Tracers for Ray4<'_> {
+    type Output = RayEnd;
+
+    fn straight(self) -> RayEnd {
+        straight(self.world, self.region, self.origin, self.direction)
+    }
+
+    /// The poster integrated Hamilton's equations with RK4 in an affine parameter; a wormhole,
+    /// whose rays change region, keeps the in-plane tracer (with RK4 steps in azimuth).
+    fn in_plane<M: PlaneMetric>(self, metric: &M) -> RayEnd {
+        let Ray4 { propagator, world, region, origin, direction } = self;
+        if matches!(propagator.intersection, Intersection::Poster { .. }) && metric.throat_u().is_none() {
+            return propagator.hamiltonian(metric, world, region, origin, direction);
+        }
+        propagator.in_plane(metric, world, region, origin, direction)
+    }
+
+    fn four_d<M: Metric>(self, metric: &M) -> RayEnd {
+        let Ray4 { propagator, world, region, origin, direction } = self;
+        propagator.hamiltonian(metric, world, region, origin, direction)
+    }
 }
 
 /// Measures of area for density estimation (photon mapping).
 impl Propagator {
-    /// Proper area per unit world area of a surface element at world point `p` with world unit
-    /// normal `n`. The static frame maps world vectors by `J = diag(1/κ, 1, 1)` (radial first),
-    /// so by Nanson's formula `da = det J · |J⁻ᵀ n| dA = √(n_t² + κ² n_r²) / κ · dA`: 1 for a
-    /// sphere about the centre, `1/κ` for a surface containing the radial direction.
-    pub fn area_scale(&self, p: Vec3, n: Vec3) -> f64 {
-        let kappa = self.radial_scale(p);
-        if kappa == 1.0 || p == Vec3::ZERO {
-            return 1.0;
+    /// Proper area per unit world area of a surface element at world point `p` of `region` with
+    /// world unit normal `n`. A radially scaled frame maps world vectors by `J = diag(1/κ, 1, 1)`
+    /// (radial first), so by Nanson's formula `da = det J · |J⁻ᵀ n| dA = √(n_t² + κ² n_r²) / κ ·
+    /// dA`: 1 for a sphere about the centre, `1/κ` for a surface containing the radial direction.
+    /// A general frame's is [`Tetrad::area_scale`].
+    pub fn area_scale(&self, region: Region, p: Vec3, n: Vec3) -> f64 {
+        match self.local_frame(region, p) {
+            LocalFrame::Radial { kappa } => {
+                if kappa == 1.0 || p == Vec3::ZERO {
+                    return 1.0;
+                }
+                let radial = n.dot(p.normalize());
+                let tangential2 = (n.length_squared() - radial * radial).max(0.0);
+                (tangential2 + kappa * kappa * radial * radial).sqrt() / kappa
+            }
+            LocalFrame::Tetrad { frame, x } => {
+                frame.area_scale(&self.spacetime.metric().metric(&x), self.to_chart(n).to_array())
+            }
+            LocalFrame::None => 1.0,
         }
-        let radial = n.dot(p.normalize());
-        let tangential2 = (n.length_squared() - radial * radial).max(0.0);
-        (tangential2 + kappa * kappa * radial * radial).sqrt() / kappa
     }
 }
 

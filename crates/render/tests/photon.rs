@@ -207,11 +207,10 @@ fn ball_under_sky(spacetime: Spacetime) -> Scene {
     let ball = Object { shape: sphere(Vec3::new(1.8, 0.0, 0.0), 0.6), material: 0, emission: None };
     let sky = || Sky::Constant(Rgb::splat(1.0));
     let black = || Sky::Constant(Rgb::ZERO);
-    let (region, world) = match spacetime {
-        Spacetime::Ellis(_) => {
-            (Region::Lower, World::new(vec![diffuse(0.6)], (Vec::new(), sky()), (vec![ball], black())))
-        }
-        _ => (Region::Upper, World::new(vec![diffuse(0.6)], (vec![ball], sky()), (Vec::new(), black()))),
+    let (region, world) = if spacetime.capabilities().throat().is_some() {
+        (Region::Lower, World::new(vec![diffuse(0.6)], (Vec::new(), sky()), (vec![ball], black())))
+    } else {
+        (Region::Upper, World::new(vec![diffuse(0.6)], (vec![ball], sky()), (Vec::new(), black())))
     };
     let camera =
         Camera::new(region, Vec3::new(0.6, 0.3, 3.0), Vec3::new(1.8, 0.0, 0.0), Vec3::Y, 40.0, 0.0, None).unwrap();

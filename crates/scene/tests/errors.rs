@@ -132,12 +132,45 @@ fn out_of_range_values_point_at_the_value() {
     check(&text, 7, "objects[0].emission", &["≥ 0"]);
 }
 
+/// A camera where no observer can stay at rest is refused at its position, whichever spacetime
+/// makes it so: inside a horizon (uncharged or charged), inside Kerr's ergoregion (the spin along y, so the equator is
+/// the x–z plane), within a wormhole's throat radius.
+#[test]
+fn cameras_where_nothing_can_stay_at_rest() {
+    let camera = |p: &str| format!("[camera]\nposition = {p}\nlook_at = [5, 3, -10]\nfov = 40\n");
+    let hole = "[spacetime]\ntype = \"schwarzschild\"\nmass = 1\n";
+    check(&format!("{hole}{}", camera("[0, 0, 1.9]")), 5, "camera.position", &["inside the event horizon"]);
+    // A charged hole's outer horizon is at M + √(M² − Q²) = 1.6: inside at 1.55, outside at 1.65.
+    let charged = "[spacetime]\ntype = \"reissner-nordstrom\"\nmass = 1\ncharge = 0.8\n";
+    check(&format!("{charged}{}", camera("[0, 1.55, 0]")), 6, "camera.position", &["inside the event horizon"]);
+    assert!(scene::parse(&format!("{charged}{}", camera("[0, 1.65, 0]")), "ok.toml", Path::new(".")).is_ok());
+    let kerr = "[spacetime]\ntype = \"kerr\"\nmass = 1\nspin = 0.9\n";
+    check(&format!("{kerr}{}", camera("[1.9, 0, 0]")), 6, "camera.position", &["inside the ergoregion"]);
+    check(&format!("{kerr}{}", camera("[1.2, 0, 0]")), 6, "camera.position", &["inside the event horizon"]);
+    // Kerr–Newman (a = 0.6, Q = 0.5) on the equator: horizon to x = 1.73, ergoregion to x = 1.96.
+    let charged = "[spacetime]\ntype = \"kerr-newman\"\nmass = 1\nspin = 0.6\ncharge = 0.5\n";
+    check(&format!("{charged}{}", camera("[1.7, 0, 0]")), 7, "camera.position", &["inside the event horizon"]);
+    check(&format!("{charged}{}", camera("[0, 0, 1.9]")), 7, "camera.position", &["inside the ergoregion"]);
+    // Above the pole, at the same distance, it is outside the ergoregion.
+    assert!(scene::parse(&format!("{kerr}{}", camera("[0, 1.9, 0]")), "ok.toml", Path::new(".")).is_ok());
+    let wormhole = "[spacetime]\ntype = \"ellis\"\nthroat = 1\n";
+    check(&format!("{wormhole}{}", camera("[0, 0, 0.99]")), 5, "camera.position", &["throat"]);
+}
+
 #[test]
 fn bad_spacetime_parameters() {
     let text = format!("[spacetime]\ntype = \"kerr\"\nmass = 1\nspin = 1.5\n{CAMERA}");
     check(&text, 4, "spacetime.spin", &["|spin| must be ≤ mass = 1, got 1.5"]);
     let text = format!("[spacetime]\ntype = \"schwarzschild\"\nmass = -2\n{CAMERA}");
     check(&text, 3, "spacetime.mass", &["≥ 0"]);
+    let text = format!("[spacetime]\ntype = \"reissner-nordstrom\"\nmass = 1\ncharge = -1.2\n{CAMERA}");
+    check(&text, 4, "spacetime.charge", &["|charge| must be ≤ mass = 1, got -1.2"]);
+    let text = format!("[spacetime]\ntype = \"reissner-nordstrom\"\nmass = 1\n{CAMERA}");
+    check(&text, 1, "spacetime.charge", &["missing"]);
+    let text = format!("[spacetime]\ntype = \"kerr-newman\"\nmass = 1\nspin = 0.8\ncharge = 0.7\n{CAMERA}");
+    check(&text, 5, "spacetime.charge", &["spin² + charge² ≤ mass² = 1, got 0.8² + 0.7²"]);
+    let text = format!("[spacetime]\ntype = \"kerr-newman\"\nmass = 1\nspin = 1.1\ncharge = 0\n{CAMERA}");
+    check(&text, 4, "spacetime.spin", &["|spin| must be ≤ mass = 1, got 1.1"]);
     let text = format!("[spacetime]\ntype = \"ellis\"\nthroat = 0\n{CAMERA}");
     check(&text, 3, "spacetime.throat", &["> 0"]);
     let text = format!("[spacetime]\ntype = \"schwarzschild\"\nmass = 1\nspin = 0.5\n{CAMERA}");

@@ -3,7 +3,7 @@
 //! its 12 × 8 × 16 box around a hole of mass 0.3 at the origin, the short way and the long way.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use spacetime::geodesic::connect::{connect, Way};
+use spacetime::geodesic::connect::{Connector, Way};
 use spacetime::tensor::norm3;
 use spacetime::Schwarzschild;
 use std::hint::black_box;
@@ -29,14 +29,14 @@ fn room_points(count: usize) -> Vec<[f64; 3]> {
 }
 
 fn connections(c: &mut Criterion) {
-    let hole = Schwarzschild::new(MASS);
+    let hole = Connector::new(Schwarzschild::new(MASS));
     let points = room_points(2 * PAIRS);
     let pairs: Vec<_> = points.chunks_exact(2).map(|p| (p[0], p[1])).collect();
     let mut group = c.benchmark_group("connect_room");
     group.throughput(Throughput::Elements(pairs.len() as u64));
     for (name, way) in [("short", Way::Short), ("long", Way::Long)] {
         group.bench_function(name, |b| {
-            b.iter(|| pairs.iter().filter_map(|&(x, y)| connect(&hole, black_box(x), black_box(y), way)).count())
+            b.iter(|| pairs.iter().filter_map(|&(x, y)| hole.connect(black_box(x), black_box(y), way)).count())
         });
     }
     group.finish();

@@ -64,13 +64,66 @@ pub fn schwarzschild_closest_approach(mass: f64, b: f64) -> f64 {
 /// `α = 4∫₀¹ [q(x)^{-1/2} − (1+x)^{-1/2}] dt`, `q = 1 + x − ε(1 + x + x²)`, `ε = 2M u₀`: a smooth
 /// integrand of the size of the bending itself.
 pub fn schwarzschild_deflection(mass: f64, b: f64) -> f64 {
-    let eps = 2.0 * mass / schwarzschild_closest_approach(mass, b);
+    static_deflection(2.0 * mass / schwarzschild_closest_approach(mass, b), 0.0)
+}
+
+/// `α = 4∫₀¹ [q(x)^{-1/2} − (1+x)^{-1/2}] dt`, `x = 1 − t²`,
+/// `q = 1 + x − ε(1 + x + x²) + η(1 + x)(1 + x²)`: the bending of a ray whose closest approach
+/// `u₀ = 1/r₀` gives `ε = 2Mu₀` and `η = Q²u₀²` ([`reissner_nordstrom_deflection`]; `η = 0`
+/// without charge).
+fn static_deflection(eps: f64, eta: f64) -> f64 {
     let integrand = |t: f64| {
         let x = 1.0 - t * t;
-        let extra = eps * (1.0 + x + x * x);
+        let extra = eps * (1.0 + x + x * x) - eta * (1.0 + x) * (1.0 + x * x);
         -inv_sqrt_difference(1.0 + x, 1.0 + x - extra, -extra)
     };
     4.0 * integrate(&integrand, 0.0, 1.0, 1e-13)
+}
+
+/// The photon sphere of a Reissner–Nordström hole, `r_ph = (3M + √(9M² − 8Q²))/2`, where
+/// `A(r)/r²` (`A = 1 − 2M/r + Q²/r²`) has its maximum (Chandrasekhar 1983, §40).
+pub fn reissner_nordstrom_photon_sphere(mass: f64, charge: f64) -> f64 {
+    0.5 * (3.0 * mass + (9.0 * mass * mass - 8.0 * charge * charge).sqrt())
+}
+
+/// `A(r) = 1 − 2M/r + Q²/r²`, the Reissner–Nordström lapse squared.
+fn reissner_nordstrom_a(mass: f64, charge: f64, r: f64) -> f64 {
+    1.0 - 2.0 * mass / r + (charge / r).powi(2)
+}
+
+/// The critical impact parameter `b_c = r_ph/√A(r_ph)` of a Reissner–Nordström hole: rays from
+/// infinity with a smaller one are captured.
+pub fn reissner_nordstrom_critical_impact(mass: f64, charge: f64) -> f64 {
+    let r = reissner_nordstrom_photon_sphere(mass, charge);
+    r / reissner_nordstrom_a(mass, charge, r).sqrt()
+}
+
+/// Angular radius of the Reissner–Nordström shadow seen by a static observer at radius
+/// `r ≥ r_ph`: `sin α = b_c √A(r) / r`.
+pub fn reissner_nordstrom_shadow_angle(mass: f64, charge: f64, r: f64) -> f64 {
+    (reissner_nordstrom_critical_impact(mass, charge) * reissner_nordstrom_a(mass, charge, r).sqrt() / r).asin()
+}
+
+/// Exact bending angle of a ray with impact parameter `b > b_c` past a Reissner–Nordström hole,
+/// `α = 2∫₀^{u₀} du / √(1/b² − u² + 2Mu³ − Q²u⁴) − π`, with `u₀` the smallest root of
+/// `u²A(u) = 1/b²` (found by bisection on `[0, 1/r_ph]`, where `u²A` increases), written as
+/// [`static_deflection`] with `u = u₀ x`.
+pub fn reissner_nordstrom_deflection(mass: f64, charge: f64, b: f64) -> f64 {
+    let target = 1.0 / (b * b);
+    let f = |u: f64| u * u * reissner_nordstrom_a(mass, charge, 1.0 / u) - target;
+    let (mut lo, mut hi) = (0.0, 1.0 / reissner_nordstrom_photon_sphere(mass, charge));
+    loop {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if f(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    static_deflection(2.0 * mass * lo, (charge * lo).powi(2))
 }
 
 /// Azimuth swept by a ray of impact parameter `b` through an Ellis wormhole of throat `b₀`,
@@ -132,6 +185,40 @@ pub fn kerr_equatorial_critical_impacts(mass: f64, spin: f64) -> (f64, f64) {
     }
 }
 
+/// Impact parameters `ξ = L_z/E` of the two circular equatorial photon orbits of a Kerr–Newman
+/// hole, `(prograde, retrograde)` signed as [`kerr_equatorial_critical_impacts`]'s. The orbits'
+/// radii are the roots outside the horizon of `r² − 3Mr + 2Q² ± 2a√(Mr − Q²) = 0` (+ prograde),
+/// found by bisection on `[r₊, 4M]`, and `ξ = (r² + a² − 4rΔ/Δ')/a`, `Δ = r² − 2Mr + a² + Q²`
+/// (from `R(r) = R'(r) = 0` of the radial potential `R = (r² + a² − aξ)² − Δ(ξ − a)²`; Kerr's
+/// formula at `Q = 0`).
+pub fn kerr_newman_equatorial_critical_impacts(mass: f64, spin: f64, charge: f64) -> (f64, f64) {
+    let (m, a, q2) = (mass, spin.abs(), charge * charge);
+    let horizon = m + (m * m - a * a - q2).sqrt();
+    let radius = |sign: f64| {
+        let f = |r: f64| r * r - 3.0 * m * r + 2.0 * q2 + sign * 2.0 * a * (m * r - q2).sqrt();
+        let (mut lo, mut hi) = (horizon, 4.0 * m);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if f(mid) < 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let xi = |r: f64| {
+        let delta = r * r - 2.0 * m * r + a * a + q2;
+        (r * r + a * a - 2.0 * r * delta / (r - m)) / a
+    };
+    let (pro, retro) = (xi(radius(1.0)), xi(radius(-1.0)));
+    if spin > 0.0 {
+        (pro, retro)
+    } else {
+        (-pro, -retro)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -152,6 +239,25 @@ mod tests {
         }
         // Diverges towards the photon sphere.
         assert!(schwarzschild_deflection(1.0, 5.25) > 3.0);
+    }
+
+    /// Without charge the charged hole's results are Schwarzschild's; an extremal hole's photon
+    /// sphere is at 2M with `b_c = 4M`; far out the bending is
+    /// `4M/b + 15πM²/(4b²) − 3πQ²/(4b²) + O(b⁻³)` (the charge term, 2.4·10⁻⁶ at b = 10³ M, is 50
+    /// times the bound on the next order, ~27 M³/b³ for Q = M).
+    #[test]
+    fn reissner_nordstrom_results_reduce_and_tend_to_weak_field() {
+        assert!((reissner_nordstrom_critical_impact(1.0, 0.0) - schwarzschild_critical_impact(1.0)).abs() < 1e-14);
+        assert!(
+            (reissner_nordstrom_deflection(1.0, 0.0, 8.0) / schwarzschild_deflection(1.0, 8.0) - 1.0).abs() < 1e-12
+        );
+        assert_eq!(reissner_nordstrom_photon_sphere(1.0, 1.0), 2.0);
+        assert!((reissner_nordstrom_critical_impact(1.0, 1.0) - 4.0).abs() < 1e-14);
+        for b in [1e3, 1e4] {
+            let exact = reissner_nordstrom_deflection(1.0, 1.0, b);
+            let weak = schwarzschild_deflection_weak(1.0, b) - 0.75 * PI / (b * b);
+            assert!((exact - weak).abs() < 50.0 / (b * b * b), "b = {b}: {exact} vs {weak}");
+        }
     }
 
     #[test]
@@ -181,6 +287,16 @@ mod tests {
         assert!((p - 2.845).abs() < 1e-3 && (r + 6.833).abs() < 1e-3, "{p} {r}");
         let (p, r) = kerr_equatorial_critical_impacts(1.0, 1e-7);
         assert!((p - 27f64.sqrt()).abs() < 1e-6 && (r + 27f64.sqrt()).abs() < 1e-6);
+    }
+
+    /// Without charge the Kerr–Newman orbits are Kerr's closed forms.
+    #[test]
+    fn kerr_newman_critical_impacts_reduce_to_kerrs() {
+        for spin in [0.5, -0.9] {
+            let (p, r) = kerr_equatorial_critical_impacts(1.0, spin);
+            let (pn, rn) = kerr_newman_equatorial_critical_impacts(1.0, spin, 0.0);
+            assert!((p - pn).abs() < 1e-12 && (r - rn).abs() < 1e-12, "a = {spin}: {p} {r} vs {pn} {rn}");
+        }
     }
 
     #[test]

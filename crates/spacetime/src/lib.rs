@@ -17,5 +17,8 @@ pub mod scattering;
 pub mod tensor;
 
 pub use geodesic::{Fate, Integrator, State, Trace, TraceSettings, Visit};
-pub use metric::{Ellis, Kerr, Metric, MetricFunction, Minkowski, Region, Schwarzschild, Spacetime, UserMetric};
+pub use metric::{
+    Ellis, Kerr, KerrNewman, Metric, MetricFunction, Minkowski, Region, ReissnerNordstrom, Schwarzschild, Spacetime,
+    UserMetric,
+};
 pub use observer::Tetrad;

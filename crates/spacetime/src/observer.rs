@@ -131,6 +131,16 @@ impl Tetrad {
         (n, energy)
     }
 
+    /// Proper area, measured in this frame, per unit chart area of a surface element at rest in
+    /// the chart with unit normal `n` (chart components of its gradient covector). The frame maps
+    /// a chart displacement `dx` at fixed `t` to its spatial components `J dx`,
+    /// `J_{ai} = g(e_(a), ∂_i)`, so by Nanson's formula `da = |det J| · |J⁻ᵀ n| dA`.
+    pub fn area_scale(&self, g: &Matrix4, n: [f64; 3]) -> f64 {
+        let j = nalgebra::Matrix3::from_fn(|a, i| (0..4).map(|m| g[m][i + 1] * self.e[a + 1][m]).sum::<f64>());
+        let Some(inverse) = j.try_inverse() else { return f64::NAN };
+        j.determinant().abs() * (inverse.transpose() * nalgebra::Vector3::from(n)).norm()
+    }
+
     /// The 3-velocity (units of c) this observer measures for a body moving with 4-velocity `u`
     /// (any positive multiple): `vⁱ = g(u, e_(i)) / (−g(u, e_(0)))`, the spatial frame
     /// components of `u` over its time component.

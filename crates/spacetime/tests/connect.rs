@@ -3,7 +3,7 @@
 
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
-use spacetime::geodesic::connect::{connect, connect_along, Connection, Way, Waypoints};
+use spacetime::geodesic::connect::{Connection, Connector, Way, Waypoints};
 use spacetime::geodesic::plane::{trace_plane, PlaneStart, PlaneStep};
 use spacetime::tensor::{cross3, dot3, norm3, normalize3};
 use spacetime::{Integrator, Region, Schwarzschild, TraceSettings, Visit};
@@ -26,6 +26,13 @@ fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
     norm3(&sub(a, b))
 }
 
+/// One connector for the tests of this file, so its tables are built once; each test takes it
+/// for its hole with [`Connector::for_hole`].
+fn connector() -> &'static Connector {
+    static CONNECTOR: std::sync::OnceLock<Connector> = std::sync::OnceLock::new();
+    CONNECTOR.get_or_init(|| Connector::new(Schwarzschild::new(1.0)))
+}
+
 #[test]
 fn without_mass_the_connection_is_the_straight_line_with_density_one_over_d_squared() {
     for mass in [0.0, 1e-9] {
@@ -34,10 +41,10 @@ fn without_mass_the_connection_is_the_straight_line_with_density_one_over_d_squa
             let d = distance(x, y);
             // Straight lines sweep less than π: there is no long way round. The least mass has
             // one, round its photon sphere at 3·10⁻⁹, whose image of `y` is vanishingly small.
-            if let Some(long) = connect(&hole, x, y, Way::Long) {
+            if let Some(long) = connector().for_hole(hole).connect(x, y, Way::Long) {
                 assert!(mass > 0.0 && long.solid_angle_per_area * d * d < 1e-12, "{x:?} → {y:?}");
             }
-            let c = connect(&hole, x, y, Way::Short).unwrap();
+            let c = connector().for_hole(hole).connect(x, y, Way::Short).unwrap();
             let line = normalize3(&sub(y, x));
             // Mass 1e-9 bends by ~4M/b ≲ 1e-9 rad and changes the density by as little; the
             // short way integrates to a relative 1e-6 per step and stops at a miss of 1e-6 in 1/r.
@@ -84,7 +91,7 @@ fn crossing(hole: &Schwarzschild, x: [f64; 3], n: [f64; 3], y: [f64; 3], t: [f64
 /// The connection from `x` to `y` going `way` round reaches `y` along the reported directions,
 /// and its density matches the spread of a traced ray bundle.
 fn assert_matches_traced_bundle(hole: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) {
-    let c: Connection = connect(hole, x, y, way).unwrap();
+    let c: Connection = connector().for_hole(*hole).connect(x, y, way).unwrap();
 
     let sweep = c.swept;
     assert_eq!(Way::of_sweep(sweep), Some(way), "{x:?} → {y:?}: swept {sweep}");
@@ -145,12 +152,12 @@ fn degenerate_pairs_have_no_connection() {
     let hole = Schwarzschild::new(1.0);
     // Inside the horizon, and on one line through the centre (no plane, no sweep).
     for way in Way::BOTH {
-        assert!(connect(&hole, [1.0, 0.0, 0.0], [10.0, 0.0, 0.0], way).is_none());
-        assert!(connect(&hole, [5.0, 0.0, 0.0], [10.0, 0.0, 0.0], way).is_none());
-        assert!(connect(&hole, [5.0, 0.0, 0.0], [-10.0, 0.0, 0.0], way).is_none());
+        assert!(connector().for_hole(hole).connect([1.0, 0.0, 0.0], [10.0, 0.0, 0.0], way).is_none());
+        assert!(connector().for_hole(hole).connect([5.0, 0.0, 0.0], [10.0, 0.0, 0.0], way).is_none());
+        assert!(connector().for_hole(hole).connect([5.0, 0.0, 0.0], [-10.0, 0.0, 0.0], way).is_none());
     }
     // Inside the photon sphere (r < 3M) a static observer has no critical angle to wind at.
-    assert!(connect(&hole, [2.5, 0.0, 0.0], [0.0, 10.0, 0.0], Way::Long).is_none());
+    assert!(connector().for_hole(hole).connect([2.5, 0.0, 0.0], [0.0, 10.0, 0.0], Way::Long).is_none());
 }
 
 /// Uniform numbers in `[0, 1)` from a seeded 64-bit linear congruential generator.
@@ -216,7 +223,7 @@ fn outside(p: [f64; 3], [a, b, c]: [[f64; 3]; 3]) -> f64 {
 fn the_short_way_round_lies_in_the_triangle_of_its_chord_and_end_tangents() {
     let (mut tried, mut bounded) = (0, 0);
     for (hole, x, y) in test_pairs(0x2545_f491_4f6c_dd1d, 200) {
-        let Some(c) = connect(&hole, x, y, Way::Short) else { continue };
+        let Some(c) = connector().for_hole(hole).connect(x, y, Way::Short) else { continue };
         tried += 1;
         let Some(triangle) = c.enclosing_triangle(x, y) else { continue };
         bounded += 1;
@@ -241,7 +248,7 @@ fn both_ways_round_lie_in_the_triangles_between_their_waypoints() {
         let (mut tried, mut bounded, mut pieces) = (0, 0, 0);
         for &(hole, x, y) in &pairs {
             let mut waypoints = Waypoints::default();
-            let Some(c) = connect_along(&hole, x, y, way, None, &mut waypoints) else { continue };
+            let Some(c) = connector().for_hole(hole).connect_along(x, y, way, None, &mut waypoints) else { continue };
             tried += 1;
             let Some(triangles) = c.enclosing_triangles(&waypoints, x, y).collect::<Option<Vec<_>>>() else { continue };
             bounded += 1;
@@ -270,10 +277,10 @@ fn rays_reaching_a_one_sided_surface_from_behind_are_dropped() {
         let (x, y) = (in_room(&mut uniform), in_room(&mut uniform));
         let normal = normalize3(&[uniform() - 0.5, uniform() - 0.5, uniform() - 0.5]);
         for way in Way::BOTH {
-            let Some(full) = connect(&hole, x, y, way) else { continue };
+            let Some(full) = connector().for_hole(hole).connect(x, y, way) else { continue };
             let from_behind = dot3(&normal, &full.end_tangent) > 0.0;
             behind += usize::from(from_behind);
-            match connect_along(&hole, x, y, way, Some(normal), &mut Waypoints::default()) {
+            match connector().for_hole(hole).connect_along(x, y, way, Some(normal), &mut Waypoints::default()) {
                 Some(kept) => assert_eq!(kept, full, "{x:?} → {y:?} {way:?}"),
                 None => {
                     dropped += 1;
@@ -302,14 +309,17 @@ fn the_short_way_from_behind_a_plane_facing_the_centre_arrives_behind_it() {
             if dot3(&n, &sub(x, y)) >= 0.0 {
                 continue;
             }
-            let Some(ray) = connect(&hole, x, y, Way::Short) else { continue };
+            let Some(ray) = connector().for_hole(hole).connect(x, y, Way::Short) else { continue };
             let arrival = dot3(&n, &ray.end_tangent);
             if dot3(&n, &y) <= 0.0 {
                 checked += 1;
                 assert!(arrival > -1e-9, "{x:?} → {y:?}, normal {n:?}: arrives from the front ({arrival})");
-                assert_eq!(connect_along(&hole, x, y, Way::Short, Some(n), &mut Waypoints::default()), None);
+                assert_eq!(
+                    connector().for_hole(hole).connect_along(x, y, Way::Short, Some(n), &mut Waypoints::default()),
+                    None
+                );
                 // Reversed, the ray leaves `y` into the back: an opaque surface there reflects none.
-                let back = connect(&hole, y, x, Way::Short).unwrap();
+                let back = connector().for_hole(hole).connect(y, x, Way::Short).unwrap();
                 let leaving = dot3(&n, &back.start_tangent);
                 assert!(leaving < 1e-9, "{y:?} → {x:?}, normal {n:?}: leaves into the front ({leaving})");
             } else if arrival < 0.0 {

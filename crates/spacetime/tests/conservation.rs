@@ -7,7 +7,7 @@
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart};
 use spacetime::geodesic::{angular_momentum_z, HamiltonianTracer, Integrator, State, TraceSettings, Visit};
 use spacetime::metric::Metric;
-use spacetime::{Ellis, Fate, Kerr, Minkowski, Schwarzschild, Tetrad};
+use spacetime::{Ellis, Fate, Kerr, Minkowski, ReissnerNordstrom, Schwarzschild, Tetrad};
 
 /// Deterministic pseudo-random numbers in [0, 1) (a 64-bit LCG), so the tests need no RNG crate.
 struct Lcg(u64);
@@ -92,7 +92,8 @@ fn ellis_keeps_the_null_constraint_energy_and_angular_momentum() {
 
 #[test]
 fn time_reversal_retraces_the_ray() {
-    let metrics: [&dyn Metric; 3] = [&Schwarzschild::new(1.0), &Kerr::new(1.0, 0.7), &Ellis::new(1.0)];
+    let metrics: [&dyn Metric; 4] =
+        [&Schwarzschild::new(1.0), &Kerr::new(1.0, 0.7), &Ellis::new(1.0), &ReissnerNordstrom::new(1.0, 0.9)];
     let settings = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-11 }, ..ADAPTIVE };
     for metric in metrics {
         // Passes close to the centre and bends strongly.
@@ -160,4 +161,5 @@ fn plane_agrees_with_hamiltonian<M: PlaneMetric>(metric: &M, seed: u64) {
 fn in_plane_tracer_agrees_with_the_hamiltonian_tracer() {
     plane_agrees_with_hamiltonian(&Schwarzschild::new(1.0), 6);
     plane_agrees_with_hamiltonian(&Ellis::new(1.0), 7);
+    plane_agrees_with_hamiltonian(&ReissnerNordstrom::new(1.0, 0.9), 8);
 }

@@ -39,6 +39,67 @@ fn schwarzschild_captures_below_the_critical_impact_parameter() {
     assert!(matches!(scatter(&hole, critical * (1.0 + 1e-6), 0.0, ADAPTIVE).fate, Fate::Escaped { .. }));
 }
 
+/// A charged hole captures rays from infinity below `b_c` ([`analytic::reissner_nordstrom_critical_impact`],
+/// from the photon sphere `r_ph = (3M + √(9M² − 8Q²))/2`) and lets those above it escape, to
+/// 10⁻⁶ in `b`, the extremal hole included.
+#[test]
+fn reissner_nordstrom_captures_below_its_critical_impact_parameter() {
+    for (mass, charge) in [(1.0, 0.5), (1.0, 0.9), (2.0, -2.0)] {
+        let hole = Spacetime::reissner_nordstrom(mass, charge).unwrap();
+        let critical = analytic::reissner_nordstrom_critical_impact(mass, charge);
+        for b in [0.0, 0.5 * critical, critical * (1.0 - 1e-6)] {
+            assert_eq!(scatter(&hole, b, 0.3, ADAPTIVE).fate, Fate::Captured, "Q = {charge}, b = {b}");
+        }
+        for b in [critical * (1.0 + 1e-6), 1.5 * critical, 100.0 * critical] {
+            let s = scatter(&hole, b, 0.3, ADAPTIVE);
+            assert!(matches!(s.fate, Fate::Escaped { .. }), "Q = {charge}, b = {b}: {:?}", s.fate);
+            assert!(s.max_abs_hamiltonian < 1e-8, "Q = {charge}, b = {b}: |H| = {:e}", s.max_abs_hamiltonian);
+        }
+    }
+}
+
+/// The bending angle past a charged hole matches the quadrature of its integral
+/// ([`analytic::reissner_nordstrom_deflection`]) to 10⁻⁷, from 1 % above the critical impact
+/// parameter (where rays wind nearly once round the photon sphere) to the weak field.
+#[test]
+fn reissner_nordstrom_bending_matches_the_exact_integral() {
+    for (mass, charge) in [(1.0, 0.5), (1.0, 0.9), (1.0, 1.0), (2.5, -1.5)] {
+        let hole = Spacetime::reissner_nordstrom(mass, charge).unwrap();
+        let critical = analytic::reissner_nordstrom_critical_impact(mass, charge);
+        for factor in [1.01, 1.05, 1.2, 2.0, 5.0, 20.0, 1e3, 1e5] {
+            let b = factor * critical;
+            let s = scatter(&hole, b, 0.3, ADAPTIVE);
+            assert!(matches!(s.fate, Fate::Escaped { .. }), "Q = {charge}, b = {b}: {:?}", s.fate);
+            let exact = analytic::reissner_nordstrom_deflection(mass, charge, b);
+            let rel = (s.deflection_rad - exact).abs() / exact;
+            assert!(rel < 1e-7, "Q = {charge}, b = {b}: {} vs exact {exact} ({rel:e})", s.deflection_rad);
+        }
+    }
+}
+
+/// The ray from infinity at `b_c (1 + 10⁻⁸)` winds round the photon sphere: its closest approach
+/// is the photon sphere's radius to `O(√δ)` (here within 10⁻³ M), far inside that of
+/// an uncharged hole (3M).
+#[test]
+fn reissner_nordstrom_near_critical_rays_graze_the_photon_sphere() {
+    use spacetime::geodesic::plane::{trace_plane, PlaneRay, PlaneStart};
+    use spacetime::ReissnerNordstrom;
+    let hole = ReissnerNordstrom::new(1.0, 0.9);
+    let r_ph = analytic::reissner_nordstrom_photon_sphere(1.0, 0.9);
+    assert!((hole.photon_sphere() - r_ph).abs() < 1e-15 && (r_ph - 2.2937).abs() < 1e-4);
+    let b = analytic::reissner_nordstrom_critical_impact(1.0, 0.9) * (1.0 + 1e-8);
+    let ray = PlaneRay::from_infinity(&hole, b, [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let mut closest = f64::INFINITY;
+    let t = trace_plane(&hole, PlaneStart::Plane(ray), &spacetime::scattering::settings(ADAPTIVE), |step| {
+        for k in 0..=16 {
+            closest = closest.min(spacetime::tensor::norm3(&step.point(&hole, f64::from(k) / 16.0).position));
+        }
+        spacetime::Visit::Continue
+    });
+    assert!(matches!(t.fate, Fate::Escaped { .. }), "{:?}", t.fate);
+    assert!((closest - r_ph).abs() < 1e-3, "closest approach {closest}, photon sphere {r_ph}");
+}
+
 #[test]
 fn ellis_bending_matches_the_exact_integral() {
     let wormhole = Spacetime::ellis(1.0).unwrap();
@@ -74,10 +135,9 @@ fn minkowski_rays_are_not_bent() {
     }
 }
 
-/// Bisects the capture threshold of equatorial rays on one side of a Kerr hole.
-fn kerr_critical_impact(spin: f64, side: f64) -> f64 {
-    let hole = Spacetime::kerr(1.0, spin).unwrap();
-    let captured = |b: f64| scatter(&hole, side * b, 0.0, ADAPTIVE).fate == Fate::Captured;
+/// Bisects the capture threshold of equatorial rays on one side of a spinning hole of mass 1.
+fn equatorial_critical_impact(hole: &Spacetime, side: f64) -> f64 {
+    let captured = |b: f64| scatter(hole, side * b, 0.0, ADAPTIVE).fate == Fate::Captured;
     let (mut lo, mut hi) = (1.0, 10.0);
     assert!(captured(lo) && !captured(hi));
     while hi - lo > 1e-9 * hi {
@@ -95,10 +155,28 @@ fn kerr_critical_impact(spin: f64, side: f64) -> f64 {
 fn kerr_shadow_edges_match_bardeens_critical_curve() {
     for spin in [0.5, 0.9] {
         let (pro, retro) = analytic::kerr_equatorial_critical_impacts(1.0, spin);
-        let found_pro = kerr_critical_impact(spin, 1.0);
-        let found_retro = kerr_critical_impact(spin, -1.0);
+        let hole = Spacetime::kerr(1.0, spin).unwrap();
+        let (found_pro, found_retro) =
+            (equatorial_critical_impact(&hole, 1.0), equatorial_critical_impact(&hole, -1.0));
         assert!(((found_pro - pro) / pro).abs() < 1e-6, "a = {spin}: prograde {found_pro} vs {pro}");
         assert!(((found_retro - retro) / retro).abs() < 1e-6, "a = {spin}: retrograde {found_retro} vs {retro}");
+    }
+}
+
+/// A charged spinning hole captures equatorial rays below the impact parameters of its circular
+/// photon orbits, on each side (to 10⁻⁶).
+#[test]
+fn kerr_newman_shadow_edges_match_its_equatorial_photon_orbits() {
+    for (spin, charge) in [(0.6, 0.5), (-0.5, 0.7), (0.8, 0.5)] {
+        let (pro, retro) = analytic::kerr_newman_equatorial_critical_impacts(1.0, spin, charge);
+        let hole = Spacetime::kerr_newman(1.0, spin, charge).unwrap();
+        // Rays with b > 0 orbit with a hole of positive spin, against one of negative spin.
+        let (plus, minus) = if spin > 0.0 { (pro, retro) } else { (retro, pro) };
+        let (found_plus, found_minus) =
+            (equatorial_critical_impact(&hole, 1.0), equatorial_critical_impact(&hole, -1.0));
+        let what = format!("a = {spin}, Q = {charge}");
+        assert!(((found_plus - plus) / plus).abs() < 1e-6, "{what}: b > 0 side {found_plus} vs {plus}");
+        assert!(((found_minus - minus) / minus).abs() < 1e-6, "{what}: b < 0 side {found_minus} vs {minus}");
     }
 }
 

@@ -32,6 +32,15 @@ pub fn parameters(spacetime: &Spacetime, scene: &Spacetime) -> Vec<Parameter> {
             Parameter { name: "spin", value: k.spin, min: -scale, max: scale },
         ],
         Spacetime::Ellis(e) => vec![Parameter { name: "throat", value: e.throat, min: 1e-3 * scale, max: scale }],
+        Spacetime::ReissnerNordstrom(h) => vec![
+            Parameter { name: "mass", value: h.mass, min: 0.0, max: scale },
+            Parameter { name: "charge", value: h.charge, min: -scale, max: scale },
+        ],
+        Spacetime::KerrNewman(h) => vec![
+            Parameter { name: "mass", value: h.mass, min: 0.0, max: scale },
+            Parameter { name: "spin", value: h.spin, min: -scale, max: scale },
+            Parameter { name: "charge", value: h.charge, min: -scale, max: scale },
+        ],
     }
 }
 
@@ -58,6 +67,10 @@ pub fn with_values(scene: &Spacetime, values: &BTreeMap<String, f64>) -> Result<
         Spacetime::Schwarzschild(s) => Spacetime::schwarzschild(get("mass", s.mass)),
         Spacetime::Kerr(k) => Spacetime::kerr(get("mass", k.mass), get("spin", k.spin)),
         Spacetime::Ellis(e) => Spacetime::ellis(get("throat", e.throat)),
+        Spacetime::ReissnerNordstrom(h) => Spacetime::reissner_nordstrom(get("mass", h.mass), get("charge", h.charge)),
+        Spacetime::KerrNewman(h) => {
+            Spacetime::kerr_newman(get("mass", h.mass), get("spin", h.spin), get("charge", h.charge))
+        }
     };
     result.map_err(|e| e.to_string())
 }

@@ -153,7 +153,7 @@ impl Candidate<'_> {
         stats: &mut PathStats,
     ) -> Option<f32> {
         if self.is_clear(world, propagator, at) {
-            return Some(shift(propagator.lapse(at.hit.p) / propagator.lapse(self.point)));
+            return Some(shift(propagator.lapse(at.region, at.hit.p) / propagator.lapse(at.region, self.point)));
         }
         self.traced(world, propagator, at, ng_local, stats)
     }
@@ -291,7 +291,9 @@ mod tests {
                         seen += 1;
                         if clear {
                             cleared += 1;
-                            let direct = super::shift(propagator.lapse(at.hit.p) / propagator.lapse(candidate.point));
+                            let direct = super::shift(
+                                propagator.lapse(at.region, at.hit.p) / propagator.lapse(at.region, candidate.point),
+                            );
                             // The traced ray starts off the surface and ends within ~ε of the point.
                             assert!((direct / shift - 1.0).abs() < 1e-4, "shift {direct} vs traced {shift}");
                         }

@@ -50,7 +50,7 @@ pub(crate) fn scene<'a>(
 ) -> Result<Scene> {
     let root = Table::root(doc, root, TOP_LEVEL)?;
     let spacetime = match root.get("spacetime") {
-        Some(n) => spacetime_section(&n.tagged("spacetime", SPACETIMES)?)?,
+        Some(n) => spacetime_section(&n.tagged("spacetime", &spacetime_tags())?)?,
         None => (Spacetime::Minkowski(Minkowski), Vec3::Y),
     };
     let (spacetime, axis) = spacetime;
@@ -60,7 +60,7 @@ pub(crate) fn scene<'a>(
         materials: Vec::new(),
         material_names: HashMap::new(),
         default_material: None,
-        two_regions: matches!(spacetime, Spacetime::Ellis(_)),
+        two_regions: spacetime.regions().len() == 2,
         gltf_cameras: Vec::new(),
     };
     if let Some(n) = root.get("materials") {
@@ -86,6 +86,7 @@ pub(crate) fn scene<'a>(
         rigs.push(b.camera_rig(t)?);
     }
     let (camera_table, rig) = (&cameras[chosen], rigs.swap_remove(chosen));
+    rig.at_rest(0.0, &spacetime, axis).map_err(|e| camera_table.loc("position").err(e))?;
     let animation_table = root.get("animation").map(|n| n.table(camera::ANIMATION_KEYS)).transpose()?;
     let animation = camera::animation(animation_table.as_ref(), camera_table, rig, &spacetime, axis)?;
     let camera = animation.rig.camera_at(0.0, &spacetime, axis).map_err(|e| camera_table.err(e))?;
@@ -140,41 +141,87 @@ fn camera_tables<'a>(doc: &Doc<'a>, root: &Table<'a>, view: Option<&str>) -> Res
     }
 }
 
-const SPACETIMES: &[(&str, &[&str])] =
-    &[("minkowski", &[]), ("schwarzschild", &["mass"]), ("kerr", &["mass", "spin", "axis"]), ("ellis", &["throat"])];
+/// Reads one spacetime type's parameters from its table.
+type SpacetimeReader = fn(&Table<'_>) -> Result<Spacetime>;
+
+/// The spacetime types of scene files: name, keys besides `type`, and reader.
+const SPACETIMES: &[(&str, &[&str], SpacetimeReader)] = &[
+    ("minkowski", &[], |_| Ok(Spacetime::Minkowski(Minkowski))),
+    ("schwarzschild", &["mass"], schwarzschild),
+    ("kerr", &["mass", "spin", "axis"], kerr),
+    ("ellis", &["throat"], ellis),
+    ("reissner-nordstrom", &["mass", "charge"], reissner_nordstrom),
+    ("kerr-newman", &["mass", "spin", "charge", "axis"], kerr_newman),
+];
 
 /// `[spacetime]`: the metric, validated by the physics crate, and its symmetry axis in the world
 /// (a Kerr hole's spin axis; default `+y`, up).
 fn spacetime_section((kind, t): &(usize, Table<'_>)) -> Result<(Spacetime, Vec3)> {
     let axis = t.or("axis", Vec3::Y, |n| n.direction())?;
-    let mass = || -> Result<f64> {
-        let m = t.req("mass", |n| n.f64())?;
-        if m >= 0.0 {
-            Ok(m)
-        } else {
-            Err(t.loc("mass").err(format!("must be ≥ 0, got {}", num(m))))
-        }
-    };
-    let result = match SPACETIMES[*kind].0 {
-        "minkowski" => return Ok((Spacetime::Minkowski(Minkowski), axis)),
-        "schwarzschild" => Spacetime::schwarzschild(mass()?).map_err(|e| (t.loc("mass"), e)),
-        "kerr" => {
-            let m = mass()?;
-            let spin = t.req("spin", |n| n.f64())?;
-            if spin.abs() > m {
-                return Err(t.loc("spin").err(format!("|spin| must be ≤ mass = {}, got {}", num(m), num(spin))));
-            }
-            Spacetime::kerr(m, spin).map_err(|e| (t.loc("spin"), e))
-        }
-        _ => {
-            let throat = t.req("throat", |n| n.f64())?;
-            if !(throat > 0.0) {
-                return Err(t.loc("throat").err(format!("must be > 0, got {}", num(throat))));
-            }
-            Spacetime::ellis(throat).map_err(|e| (t.loc("throat"), e))
-        }
-    };
-    result.map(|s| (s, axis)).map_err(|(loc, e)| loc.err(e.to_string()))
+    Ok((SPACETIMES[*kind].2(t)?, axis))
+}
+
+/// The types and keys of [`SPACETIMES`], as the reader checks a tagged table against them.
+fn spacetime_tags() -> Vec<(&'static str, &'static [&'static str])> {
+    SPACETIMES.iter().map(|(name, keys, _)| (*name, *keys)).collect()
+}
+
+/// A physics-crate parameter error, at the key it concerns.
+fn checked(
+    t: &Table<'_>,
+    key: &str,
+    s: std::result::Result<Spacetime, spacetime::metric::ParameterError>,
+) -> Result<Spacetime> {
+    s.map_err(|e| t.loc(key).err(e.to_string()))
+}
+
+/// `mass`, required and ≥ 0.
+fn mass(t: &Table<'_>) -> Result<f64> {
+    let m = t.req("mass", |n| n.f64())?;
+    if m >= 0.0 {
+        Ok(m)
+    } else {
+        Err(t.loc("mass").err(format!("must be ≥ 0, got {}", num(m))))
+    }
+}
+
+/// `key` (a spin or a charge), required with `|key| ≤ mass`.
+fn at_most_mass(t: &Table<'_>, key: &str, mass: f64) -> Result<f64> {
+    let v = t.req(key, |n| n.f64())?;
+    if v.abs() <= mass {
+        Ok(v)
+    } else {
+        Err(t.loc(key).err(format!("|{key}| must be ≤ mass = {}, got {}", num(mass), num(v))))
+    }
+}
+
+fn schwarzschild(t: &Table<'_>) -> Result<Spacetime> {
+    checked(t, "mass", Spacetime::schwarzschild(mass(t)?))
+}
+
+fn kerr(t: &Table<'_>) -> Result<Spacetime> {
+    let m = mass(t)?;
+    checked(t, "spin", Spacetime::kerr(m, at_most_mass(t, "spin", m)?))
+}
+
+fn reissner_nordstrom(t: &Table<'_>) -> Result<Spacetime> {
+    let m = mass(t)?;
+    checked(t, "charge", Spacetime::reissner_nordstrom(m, at_most_mass(t, "charge", m)?))
+}
+
+/// Each of `spin` and `charge` at most the mass, then `spin² + charge² ≤ mass²` (at `charge`).
+fn kerr_newman(t: &Table<'_>) -> Result<Spacetime> {
+    let m = mass(t)?;
+    let spin = at_most_mass(t, "spin", m)?;
+    checked(t, "charge", Spacetime::kerr_newman(m, spin, at_most_mass(t, "charge", m)?))
+}
+
+fn ellis(t: &Table<'_>) -> Result<Spacetime> {
+    let throat = t.req("throat", |n| n.f64())?;
+    if !(throat > 0.0) {
+        return Err(t.loc("throat").err(format!("must be > 0, got {}", num(throat))));
+    }
+    checked(t, "throat", Spacetime::ellis(throat))
 }
 
 impl Builder<'_> {

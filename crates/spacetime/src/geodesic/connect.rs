@@ -59,11 +59,12 @@
 
 use super::binet_taylor;
 use super::plane::{PlaneAxes, PlaneMetric};
-use super::start_table::start_table;
+use super::start_table::StartTables;
 use super::tangent_triangle::tangent_triangle;
 use crate::metric::Schwarzschild;
 use crate::tensor::{cross3, dot3, norm3, normalize3, scale3};
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// Relative tolerance of the final shot's integration, per Taylor step. The connection serves
 /// Monte Carlo sampling, where a relative error of 10⁻⁵ in a density is far below the noise, and
@@ -94,7 +95,7 @@ const UTOL: f64 = 1e-6;
 /// and `x`): no connection is returned.
 const MIN_SIN_SWEEP: f64 = 1e-9;
 const MAX_ITERATIONS: u32 = 100;
-/// A ray is dropped by [`connect_along`] when it meets the surface from behind by more than
+/// A ray is dropped by [`Connector::connect_along`] when it meets the surface from behind by more than
 /// this cosine: ten times the error of the direction it is judged by.
 const FACING_MARGIN: f64 = 1e-2;
 const MAX_STEPS: u32 = 10_000;
@@ -150,7 +151,7 @@ const MAX_WAYPOINTS: usize = 24;
 
 /// Points along a connecting ray, in its plane (basis `x̂`, `e₂`), where the last shot's Taylor
 /// steps ended, less than a radian of azimuth apart: the solver's scratch, kept by the caller
-/// beside the [`Connection`] it last filled them for ([`connect_along`]), so that a connection
+/// beside the [`Connection`] it last filled them for ([`Connector::connect_along`]), so that a connection
 /// does not carry (and copy) them where its single triangle settles its visibility.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Waypoints {
@@ -273,38 +274,60 @@ enum Shot {
     Reaches([f64; 6]),
 }
 
-/// The ray that leaves world point `x` and reaches world point `y` going `way` round the centre
-/// (both outside the horizon), or `None` where there is none (it would be captured, `y` lies on
-/// the line through the centre and `x`, or, the long way, `x` lies inside the photon sphere).
-pub fn connect(metric: &Schwarzschild, x: [f64; 3], y: [f64; 3], way: Way) -> Option<Connection> {
-    connect_along(metric, x, y, way, None, &mut Waypoints::default())
+/// Joins points of one Schwarzschild spacetime by light rays. It owns the tables of first
+/// shots ([`StartTables`], built on each way's first use and shared by clones), so a render
+/// builds one with its propagator and no state outlives it.
+#[derive(Clone, Debug)]
+pub struct Connector {
+    metric: Schwarzschild,
+    tables: Arc<StartTables>,
 }
 
-/// [`connect`], filling `waypoints` with points along the ray (overwritten by each call), and
-/// to a point `y` on a surface that only the rays reaching it from the side of its world normal
-/// `facing` matter for (a one-sided emitter): a ray found arriving from the other side is
-/// dropped as soon as a shot gives its direction to about 10⁻³, before any shot that would refine
-/// it (rays within 10⁻² in the cosine of grazing the surface are kept and refined).
-pub fn connect_along(
-    metric: &Schwarzschild,
-    x: [f64; 3],
-    y: [f64; 3],
-    way: Way,
-    facing: Option<[f64; 3]>,
-    waypoints: &mut Waypoints,
-) -> Option<Connection> {
-    solve(metric, x, y, way, facing, true, waypoints)
+impl Connector {
+    pub fn new(metric: Schwarzschild) -> Self {
+        Self { metric, tables: Arc::default() }
+    }
+
+    /// A connector for the hole `metric` sharing this one's tables, which hold for every mass.
+    pub fn for_hole(&self, metric: Schwarzschild) -> Self {
+        Self { metric, tables: Arc::clone(&self.tables) }
+    }
+
+    /// The ray that leaves world point `x` and reaches world point `y` going `way` round the
+    /// centre (both outside the horizon), or `None` where there is none (it would be captured,
+    /// `y` lies on the line through the centre and `x`, or, the long way, `x` lies inside the
+    /// photon sphere).
+    pub fn connect(&self, x: [f64; 3], y: [f64; 3], way: Way) -> Option<Connection> {
+        self.connect_along(x, y, way, None, &mut Waypoints::default())
+    }
+
+    /// [`Connector::connect`], filling `waypoints` with points along the ray (overwritten by
+    /// each call), and to a point `y` on a surface that only the rays reaching it from the side
+    /// of its world normal `facing` matter for (a one-sided emitter): a ray found arriving from
+    /// the other side is dropped as soon as a shot gives its direction to about 10⁻³, before any
+    /// shot that would refine it (rays within 10⁻² in the cosine of grazing the surface are kept
+    /// and refined).
+    pub fn connect_along(
+        &self,
+        x: [f64; 3],
+        y: [f64; 3],
+        way: Way,
+        facing: Option<[f64; 3]>,
+        waypoints: &mut Waypoints,
+    ) -> Option<Connection> {
+        solve(&self.metric, x, y, way, facing, Some(&self.tables), waypoints)
+    }
 }
 
-/// [`connect_along`], starting from the tabulated [`start_parameter`] where `tabulated` and the
-/// way's table covers the ends, else from [`guessed_parameter`].
+/// [`Connector::connect_along`], starting from the tabulated [`start_parameter`] where `tables`
+/// are given and the way's table covers the ends, else from [`guessed_parameter`].
 pub(super) fn solve(
     metric: &Schwarzschild,
     x: [f64; 3],
     y: [f64; 3],
     way: Way,
     facing: Option<[f64; 3]>,
-    tabulated: bool,
+    tables: Option<&StartTables>,
     waypoints: &mut Waypoints,
 ) -> Option<Connection> {
     let (rx, ry) = (norm3(&x), norm3(&y));
@@ -337,7 +360,7 @@ pub(super) fn solve(
         Way::Long => (scale3(&e2, -1.0), 2.0 * PI - short, (-sin, cos)),
     };
     let at_y = PlaneAxes::at_sin_cos(&xh, &e2, sweep_sin_cos);
-    let correction = tabulated.then(|| start_table(way).correction(m * ux, m * uy, sweep)).flatten();
+    let correction = tables.and_then(|t| t.get(way).correction(m * ux, m * uy, sweep));
     // A tabulated start is close enough for the first shot to be the fine one.
     let mut fine = correction.is_some();
     let mut s = match way {

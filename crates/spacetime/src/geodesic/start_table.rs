@@ -1,4 +1,5 @@
-//! Starts of connections, tabulated once for every mass.
+//! Starts of connections, tabulated once for every mass, by the [`StartTables`] a
+//! [`Connector`](super::connect::Connector) owns (not global state: a render builds its own).
 //!
 //! [`connect`](super::connect) shoots each way from a first guess: the short way's is correct to
 //! first order in `M`, the long way's is the strong-deflection limit. In a room round a hole
@@ -30,13 +31,28 @@ pub(super) struct StartTable {
     values: Vec<f64>,
 }
 
-/// The table of `way`, built on first use.
-pub(super) fn start_table(way: Way) -> &'static StartTable {
-    static SHORT: OnceLock<StartTable> = OnceLock::new();
-    static LONG: OnceLock<StartTable> = OnceLock::new();
-    match way {
-        Way::Short => SHORT.get_or_init(|| StartTable::build(way)),
-        Way::Long => LONG.get_or_init(|| StartTable::build(way)),
+/// Both ways' tables, each built on its first use (a render that never connects the long way
+/// never pays for its table). They hold for every mass, so one set serves any hole.
+#[derive(Default)]
+pub(super) struct StartTables {
+    short: OnceLock<StartTable>,
+    long: OnceLock<StartTable>,
+}
+
+impl StartTables {
+    /// The table of `way`, built on first use.
+    pub(super) fn get(&self, way: Way) -> &StartTable {
+        match way {
+            Way::Short => self.short.get_or_init(|| StartTable::build(way)),
+            Way::Long => self.long.get_or_init(|| StartTable::build(way)),
+        }
+    }
+}
+
+impl std::fmt::Debug for StartTables {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let built = |t: &OnceLock<StartTable>| t.get().is_some();
+        f.debug_struct("StartTables").field("short", &built(&self.short)).field("long", &built(&self.long)).finish()
     }
 }
 
@@ -70,7 +86,7 @@ impl StartTable {
                     // `y` lies the short way round from `x`, at `Δφ = min(sweep, 2π − sweep)`.
                     let (sin, cos) = sweep.sin_cos();
                     let (x, y) = ([1.0 / ux, 0.0, 0.0], [cos / uy, sin.abs() / uy, 0.0]);
-                    let Some(ray) = solve(&unit, x, y, way, None, false, &mut waypoints) else { continue };
+                    let Some(ray) = solve(&unit, x, y, way, None, None, &mut waypoints) else { continue };
                     // The ray leaves at ψ ∈ (0, π) from the outward radial x̂, in the plane of ŷ.
                     let psi = ray.start[1].abs().atan2(ray.start[0]);
                     let guess = guessed_parameter(way, 1.0, ux, uy, cos, sin.abs(), sweep);
@@ -114,6 +130,7 @@ mod tests {
     fn tabulated_starts_are_close_to_the_exact_ones() {
         let mass = 0.3;
         let hole = Schwarzschild::new(mass);
+        let tables = StartTables::default();
         for way in Way::BOTH {
             let (low, high) = sweeps(way);
             let (mut worst_table, mut worst_guess, mut covered) = (0.0f64, 0.0f64, 0);
@@ -124,11 +141,11 @@ mod tests {
                 let sweep = low + 0.02 + (high - low - 0.04) * f(2);
                 let (sin, cos) = sweep.sin_cos();
                 let (x, y) = ([rx, 0.0, 0.0], [ry * cos, ry * sin.abs(), 0.0]);
-                let Some(ray) = solve(&hole, x, y, way, None, false, &mut Waypoints::default()) else { continue };
+                let Some(ray) = solve(&hole, x, y, way, None, None, &mut Waypoints::default()) else { continue };
                 let (ux, uy) = (1.0 / rx, 1.0 / ry);
                 let exact = start_parameter(way, mass, ux, ray.start[1].abs().atan2(ray.start[0]));
                 let guess = guessed_parameter(way, mass, ux, uy, cos, sin.abs(), sweep);
-                let Some(correction) = start_table(way).correction(mass * ux, mass * uy, sweep) else { continue };
+                let Some(correction) = tables.get(way).correction(mass * ux, mass * uy, sweep) else { continue };
                 covered += 1;
                 // The miss at y counts against u_y. The short way's, to first order, is J δs
                 // with J ≈ sin Δφ; the long way's is the sweep's error, about −δ(ln ε), times

@@ -1,7 +1,8 @@
 //! The closed set of built-in spacetimes, for scene files and the command line, validated on
 //! construction.
 
-use super::{Ellis, Kerr, Metric, Minkowski, Schwarzschild};
+use super::capabilities::{Capabilities, Tracers};
+use super::{Ellis, Kerr, KerrNewman, Metric, Minkowski, Region, ReissnerNordstrom, Schwarzschild};
 
 /// A built-in spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -10,6 +11,8 @@ pub enum Spacetime {
     Schwarzschild(Schwarzschild),
     Kerr(Kerr),
     Ellis(Ellis),
+    ReissnerNordstrom(ReissnerNordstrom),
+    KerrNewman(KerrNewman),
 }
 
 /// A parameter outside the spacetime's domain.
@@ -47,6 +50,27 @@ impl Spacetime {
         Ok(Spacetime::Kerr(Kerr::new(mass, spin)))
     }
 
+    /// Reissner–Nordström with `|charge| ≤ mass`.
+    pub fn reissner_nordstrom(mass: f64, charge: f64) -> Result<Self, ParameterError> {
+        let mass = finite_non_negative("mass", mass)?;
+        if !charge.is_finite() || charge.abs() > mass {
+            return Err(ParameterError(format!("charge must satisfy |charge| ≤ mass = {mass}, got {charge}")));
+        }
+        Ok(Spacetime::ReissnerNordstrom(ReissnerNordstrom::new(mass, charge)))
+    }
+
+    /// Kerr–Newman with `spin² + charge² ≤ mass²`; spin along +z as [`Spacetime::kerr`]'s.
+    pub fn kerr_newman(mass: f64, spin: f64, charge: f64) -> Result<Self, ParameterError> {
+        let mass = finite_non_negative("mass", mass)?;
+        if !(spin.is_finite() && charge.is_finite() && spin * spin + charge * charge <= mass * mass) {
+            return Err(ParameterError(format!(
+                "spin and charge must satisfy spin² + charge² ≤ mass² = {}, got {spin}² + {charge}²",
+                mass * mass
+            )));
+        }
+        Ok(Spacetime::KerrNewman(KerrNewman::new(mass, spin, charge)))
+    }
+
     pub fn ellis(throat: f64) -> Result<Self, ParameterError> {
         if !(throat.is_finite() && throat > 0.0) {
             return Err(ParameterError(format!("throat radius must be a finite number > 0, got {throat}")));
@@ -61,6 +85,8 @@ impl Spacetime {
             Spacetime::Schwarzschild(_) => "schwarzschild",
             Spacetime::Kerr(_) => "kerr",
             Spacetime::Ellis(_) => "ellis",
+            Spacetime::ReissnerNordstrom(_) => "reissner-nordstrom",
+            Spacetime::KerrNewman(_) => "kerr-newman",
         }
     }
 
@@ -71,11 +97,40 @@ impl Spacetime {
 
     /// The metric, for code that needs no more than the [`Metric`] trait.
     pub fn metric(&self) -> &dyn Metric {
+        self.capabilities()
+    }
+
+    /// What the spacetime answers a renderer ([`Capabilities`]): the one place that lists the
+    /// metrics for it.
+    pub fn capabilities(&self) -> &dyn Capabilities {
         match self {
             Spacetime::Minkowski(m) => m,
             Spacetime::Schwarzschild(m) => m,
             Spacetime::Kerr(m) => m,
             Spacetime::Ellis(m) => m,
+            Spacetime::ReissnerNordstrom(m) => m,
+            Spacetime::KerrNewman(m) => m,
+        }
+    }
+
+    /// Calls the tracer of `tracers` that fits the metric ([`Capabilities::choose_tracer`]),
+    /// generic over the metric: dispatch once per ray, none per step.
+    pub fn choose_tracer<T: Tracers>(&self, tracers: T) -> T::Output {
+        match self {
+            Spacetime::Minkowski(m) => m.choose_tracer(tracers),
+            Spacetime::Schwarzschild(m) => m.choose_tracer(tracers),
+            Spacetime::Kerr(m) => m.choose_tracer(tracers),
+            Spacetime::Ellis(m) => m.choose_tracer(tracers),
+            Spacetime::ReissnerNordstrom(m) => m.choose_tracer(tracers),
+            Spacetime::KerrNewman(m) => m.choose_tracer(tracers),
+        }
+    }
+
+    /// The asymptotic regions: a wormhole's two, else the one.
+    pub fn regions(&self) -> &'static [Region] {
+        match self.capabilities().throat() {
+            Some(_) => &[Region::Upper, Region::Lower],
+            None => &[Region::Upper],
         }
     }
 }
@@ -91,6 +146,11 @@ mod tests {
         assert!(Spacetime::kerr(1.0, 1.0).is_ok());
         assert!(Spacetime::kerr(1.0, -1.01).is_err());
         assert!(Spacetime::ellis(0.0).is_err());
+        assert!(Spacetime::reissner_nordstrom(1.0, -1.0).is_ok());
+        assert!(Spacetime::reissner_nordstrom(1.0, 1.01).is_err());
+        assert!(Spacetime::kerr_newman(1.0, 0.6, -0.8).is_ok());
+        assert!(Spacetime::kerr_newman(1.0, 0.6, 0.81).is_err());
+        assert!(Spacetime::kerr_newman(1.0, f64::NAN, 0.0).is_err());
         assert_eq!(Spacetime::ellis(2.0).unwrap().name(), "ellis");
     }
 }

@@ -1,6 +1,8 @@
 //! Flat spacetime in Cartesian coordinates: `g = η`. Rays are straight lines.
 
-use super::Metric;
+use super::capabilities::{Capabilities, LocalFrame, NoRest, Tracers};
+use super::{Metric, Region};
+use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{Covector4, Matrix4, Vector4, ETA};
 
@@ -77,12 +79,52 @@ impl PlaneMetric for Minkowski {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+/// Flat space: one region, static, straight rays, every observer at rest anywhere.
+impl Capabilities for Minkowski {
+    fn is_flat(&self) -> bool {
+        true
+    }
 
-    #[test]
-    fn conformance() {
-        super::super::conformance::check_metric(&Minkowski, &[0.0, 1.0, -2.0, 3.0]);
+    fn is_spherically_symmetric(&self) -> bool {
+        true
+    }
+
+    fn throat(&self) -> Option<f64> {
+        None
+    }
+
+    fn is_time_symmetric(&self) -> bool {
+        true
+    }
+
+    fn rest(&self, region: Region, _p: [f64; 3]) -> Result<(), NoRest> {
+        match region {
+            Region::Upper => Ok(()),
+            Region::Lower => Err(NoRest::NoSuchRegion),
+        }
+    }
+
+    fn local_frame(&self, _region: Region, _p: [f64; 3]) -> LocalFrame {
+        LocalFrame::Radial { kappa: 1.0 }
+    }
+
+    fn observer_lapse(&self, _region: Region, _p: [f64; 3]) -> f64 {
+        1.0
+    }
+
+    fn impact_bound(&self, radius: f64) -> Option<f64> {
+        Some(radius)
+    }
+
+    fn no_turning_beyond(&self) -> Option<f64> {
+        None
+    }
+
+    fn light_connector(&self) -> Option<Connector> {
+        None
+    }
+
+    fn choose_tracer<T: Tracers>(&self, tracers: T) -> T::Output {
+        tracers.straight()
     }
 }

@@ -6,18 +6,25 @@
 //! outgoing Kerr–Schild coordinates, regular on the horizon that backward-traced rays cross.
 
 mod builtin;
+mod capabilities;
+pub mod conformance;
 mod ellis;
 mod kerr;
+mod kerr_newman;
 mod kerr_schild;
 mod minkowski;
+mod reissner_nordstrom;
 mod schwarzschild;
 pub(crate) mod user;
 
 pub use builtin::{ParameterError, Spacetime};
+pub use capabilities::{Capabilities, LocalFrame, NoRest, Tracers};
 pub use ellis::Ellis;
 pub use kerr::Kerr;
+pub use kerr_newman::KerrNewman;
 pub use kerr_schild::{KerrSchild, KerrSchildPoint};
 pub use minkowski::Minkowski;
+pub use reissner_nordstrom::ReissnerNordstrom;
 pub use schwarzschild::Schwarzschild;
 pub use user::{MetricFunction, Scalar, UserMetric};
 
@@ -119,54 +126,5 @@ pub trait Metric: Send + Sync {
     /// Whether rotation about the z axis is a symmetry (then `p_φ = x p_y − y p_x` is conserved).
     fn is_axisymmetric(&self) -> bool {
         true
-    }
-}
-
-#[cfg(test)]
-pub(crate) mod conformance {
-    //! Checks every metric must pass, run by each metric's tests.
-    use super::*;
-    use crate::tensor::ETA;
-
-    /// `g · g⁻¹ = I` and the derivatives of `g^{μν}` agree with central finite differences.
-    pub fn check_metric(m: &dyn Metric, x: &Vector4) {
-        let g = m.metric(x);
-        let (ginv, d) = m.inverse_metric_derivatives(x);
-        let ginv_plain = m.inverse_metric(x);
-        for i in 0..4 {
-            for j in 0..4 {
-                let id: f64 = (0..4).map(|k| g[i][k] * ginv[k][j]).sum();
-                let expect = if i == j { 1.0 } else { 0.0 };
-                assert!((id - expect).abs() < 1e-12, "g·g⁻¹ at {x:?}: [{i}][{j}] = {id}");
-                assert!((ginv[i][j] - ginv_plain[i][j]).abs() < 1e-12 * (1.0 + ginv[i][j].abs()));
-                assert!((g[i][j] - g[j][i]).abs() < 1e-14, "metric symmetric");
-            }
-        }
-        let h = 1e-5 * m.length_scale().max(crate::tensor::norm3(&crate::tensor::spatial(x)));
-        for a in 0..4 {
-            let mut xp = *x;
-            let mut xm = *x;
-            xp[a] += h;
-            xm[a] -= h;
-            let (gp, _) = m.inverse_metric_derivatives(&xp);
-            let (gm, _) = m.inverse_metric_derivatives(&xm);
-            for i in 0..4 {
-                for j in 0..4 {
-                    let fd = (gp[i][j] - gm[i][j]) / (2.0 * h);
-                    let scale = 1.0 + fd.abs() + d[a][i][j].abs();
-                    assert!((fd - d[a][i][j]).abs() < 1e-6 * scale, "∂_{a} g^{i}{j}: fd {fd} vs {}", d[a][i][j]);
-                }
-            }
-        }
-        // The RHS default and any override agree.
-        let p = [-1.0, 0.3, -0.2, 0.5];
-        let (dx, dp) = m.geodesic_rhs(x, &p);
-        let dx_ref = contract(&ginv, &p);
-        for k in 0..4 {
-            assert!((dx[k] - dx_ref[k]).abs() < 1e-12 * (1.0 + dx_ref[k].abs()));
-            let dp_ref = -0.5 * quadratic(&d[k], &p, &p);
-            assert!((dp[k] - dp_ref).abs() < 1e-11 * (1.0 + dp_ref.abs()), "dp_{k}: {} vs {dp_ref}", dp[k]);
-        }
-        let _ = ETA;
     }
 }

@@ -172,7 +172,7 @@ pub(crate) mod tests {
                     }
                 }
             }
-            super::super::conformance::check_metric(&user, &x);
+            crate::metric::conformance::check_metric(&user, &x);
         }
     }
 }

@@ -27,10 +27,7 @@ pub(super) struct Target {
 /// The targets of the upper and the lower region: `None` where the receivers are unbounded
 /// (an infinite plane) or there are none.
 pub(super) fn targets(world: &World, spacetime: &Spacetime) -> [Option<Target>; 2] {
-    let throat = match spacetime {
-        Spacetime::Ellis(m) => Some(m.throat),
-        _ => None,
-    };
+    let throat = spacetime.capabilities().throat();
     [Region::Upper, Region::Lower].map(|region| {
         let receivers = world.objects(region).iter().filter(|o| o.emission.is_none()).map(|o| o.shape.bounds());
         let throat = throat.map(|b| crate::geometry::Aabb::new(Vec3::splat(-b), Vec3::splat(b)));

@@ -149,7 +149,7 @@ pub(super) fn emit(
     if !(emission.two_sided || cos > 0.0) || !(aimed.pdf > 0.0) {
         return None;
     }
-    let area = light.shape.area() * propagator.area_scale(point, normal);
+    let area = light.shape.area() * propagator.area_scale(region, point, normal);
     let p_source = p_region * (1.0 - p_sky);
     let scale = cos.abs() * area / (aimed.pdf * p_source * choice.probability);
     Some(Photon {

@@ -15,7 +15,8 @@
 //! deposit is summed chunk by chunk in chunk order. The image does not depend on the threads.
 //!
 //! Photons follow geodesics forwards, which needs a spacetime whose light rays can be
-//! reversed: static and time-symmetric (Minkowski, Schwarzschild, Ellis). Kerr is not.
+//! reversed: static and time-symmetric (Minkowski, Schwarzschild, Ellis; Kerr is not), as the
+//! spacetime answers ([`spacetime::metric::Capabilities::is_time_symmetric`]).
 //!
 //! Statistics: `rays` counts every geodesic segment traced (camera, background and photon
 //! paths); the fates are those of the camera paths, which end at their visible points
@@ -61,7 +62,7 @@ const DEFAULT_RADIUS_FRACTION: f64 = 0.01;
 
 /// Whether photons can be traced forwards in `spacetime` (see the module documentation).
 pub fn supports(spacetime: &Spacetime) -> bool {
-    !matches!(spacetime, Spacetime::Kerr(_))
+    spacetime.capabilities().is_time_symmetric()
 }
 
 /// Photons an iteration of `scene`'s render: as set, or one per pixel.

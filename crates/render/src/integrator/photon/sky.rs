@@ -40,7 +40,8 @@ pub(super) struct SkySource {
 
 impl SkySource {
     /// The sky `sky` of a region whose receivers lie in `target`; `None` for a black sky, or
-    /// when the receivers are unbounded (an infinite plane) and no disk covers them.
+    /// when the receivers are unbounded (an infinite plane) and no disk covers them (or the
+    /// spacetime bounds no impact parameters, which time-symmetric ones all do).
     pub fn new(sky: &Sky, target: Option<Target>, propagator: &Propagator) -> Option<Self> {
         let target = target?;
         let distribution = SkyDistribution::new(sky);
@@ -50,7 +51,7 @@ impl SkySource {
         let (centre, radius) = if propagator.is_flat() {
             (target.centre, target.radius)
         } else {
-            (Vec3::ZERO, propagator.impact_bound(target.centre.length() + target.radius))
+            (Vec3::ZERO, propagator.impact_bound(target.centre.length() + target.radius)?)
         };
         let distance = (propagator.escape_radius() + centre.length() + radius).max(FAR * radius);
         Some(Self { distribution, centre, radius, distance })
@@ -74,7 +75,7 @@ impl SkySource {
         let [x, y] = concentric_disk(rng.next_2d());
         let frame = Frame::from_normal(w);
         let origin = self.centre + w * self.distance + (frame.s * x + frame.t * y) * self.radius;
-        let lapse = propagator.lapse(origin);
+        let lapse = propagator.lapse(region, origin);
         let scale = PI * self.radius * self.radius / (sample.pdf * lapse * lapse);
         Some(Photon { region, origin, direction: -w, power: sample.radiance * scale as f32 })
     }

@@ -123,7 +123,7 @@ impl CameraPass<'_> {
 
     /// The visible point at a scattering vertex.
     fn visible_point(&self, v: &Vertex) -> VisiblePoint {
-        let area = self.propagator.area_scale(v.p, v.ng);
+        let area = self.propagator.area_scale(v.region, v.p, v.ng);
         VisiblePoint {
             region: v.region,
             p: v.p,
