@@ -289,6 +289,38 @@ fn a_base_colour_texel_shows_where_its_uv_says() {
 }
 
 #[test]
+fn a_normal_texture_bends_the_shading_normal_in_the_tangent_frame() {
+    let dir = temp_dir("normal-map");
+    // The 2×1 PNG above, read as linear data: on the left (1, ½, 0), a normal below the surface,
+    // which is not taken; on the right (0, 0, 1), the tangent-space normal (−s, −s, 1) for scale s.
+    const PNG: [u8; 72] = [
+        137, 80, 78, 71, 13, 10, 26, 10, 0, 0, 0, 13, 73, 72, 68, 82, 0, 0, 0, 2, 0, 0, 0, 1, 8, 2, 0, 0, 0, 123, 64,
+        232, 221, 0, 0, 0, 15, 73, 68, 65, 84, 120, 156, 99, 248, 223, 192, 192, 192, 240, 31, 0, 9, 128, 2, 127, 23,
+        129, 201, 75, 0, 0, 0, 0, 73, 69, 78, 68, 174, 66, 96, 130,
+    ];
+    std::fs::write(dir.join("tiny.png"), PNG).unwrap();
+    let scale = 0.5;
+    let extra = json!({
+        "materials": [{ "normalTexture": { "index": 0, "scale": scale }, "pbrMetallicRoughness": { "metallicFactor": 0.0 } }],
+        "textures": [{ "source": 0 }],
+        "images": [{ "uri": "tiny.png" }],
+    });
+    let file =
+        write_gltf(&dir, "bumpy", &[Mesh::square_facing_down(1.0).with_material(0)], json!([{ "mesh": 0 }]), extra);
+    let s = load(&dir, &format!("{CAMERA}[[objects]]\ngltf = \"{file}\"\n")).unwrap();
+    // The square faces −y; u grows with x and v with z, so the tangent frame is T = x, B = N × T
+    // = z, N = −y, and the right texel's normal is (−s x − s z − y)/|…|.
+    let shading_normal = |x: f64| {
+        let ray = Ray::new(Vec3::new(x, -3.0, 0.2), Vec3::Y, 10.0);
+        let (object, t) = s.world.intersect(Region::Upper, &ray).unwrap();
+        s.world.surface(Region::Upper, object, &ray, t).ns
+    };
+    assert!((shading_normal(-0.5) + Vec3::Y).length() < 1e-9, "{}", shading_normal(-0.5));
+    let expected = Vec3::new(-scale, -1.0, -scale).normalize();
+    assert!((shading_normal(0.5) - expected).length() < 1e-6, "{} against {expected}", shading_normal(0.5));
+}
+
+#[test]
 fn an_emissive_square_lights_the_floor_below_to_its_analytic_irradiance() {
     // A square of half-side a and radiance L, facing down at height h above a diffuse floor of
     // reflectance ρ: on the axis, E = 4L·X/√(1+X²)·atan(X/√(1+X²)), X = a/h (four corner
@@ -398,6 +430,7 @@ fn materials_can_be_overridden_by_name_or_all_at_once() {
                 Material::Dielectric { .. } => "dielectric",
                 Material::RoughConductor { .. } => "conductor",
                 Material::RoughPlastic { .. } => "plastic",
+                Material::NormalMapped { .. } => "normal-mapped",
             })
             .collect()
     };

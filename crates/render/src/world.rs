@@ -382,7 +382,9 @@ impl World {
 
     /// The full surface record of a hit found by [`World::intersect`].
     pub fn surface(&self, region: Region, index: usize, ray: &Ray, t: f64) -> SurfaceHit {
-        self.object(region, index).shape.surface(ray, t)
+        let object = self.object(region, index);
+        let hit = object.shape.surface(ray, t);
+        SurfaceHit { ns: self.materials[object.material].shading_normal(&hit), ..hit }
     }
 
     pub fn sky(&self, region: Region) -> &Sky {

@@ -42,6 +42,7 @@ pub mod diffuse;
 pub mod fresnel;
 pub mod microfacet;
 pub mod mirror;
+pub mod normal_map;
 pub mod plastic;
 
 #[cfg(test)]
@@ -51,9 +52,11 @@ mod tests;
 
 pub use fresnel::ConductorFresnel;
 pub use microfacet::roughness_to_alpha;
+pub use normal_map::NormalMap;
 
 use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::shape::SurfaceHit;
 use crate::texture::Texture;
 use microfacet::Ggx;
 use plastic::Plastic;
@@ -202,6 +205,8 @@ pub enum Material {
     RoughConductor { roughness: f64, fresnel: ConductorFresnel },
     /// See [`plastic`]. `roughness ∈ [0, 1]`, `alpha = roughness²`; `ior ≥ 1` of the coating.
     RoughPlastic { diffuse: Texture, roughness: f64, ior: f64 },
+    /// `base` with its shading normal bent by a [`normal_map`].
+    NormalMapped { base: Box<Material>, map: NormalMap },
 }
 
 impl Material {
@@ -222,6 +227,19 @@ impl Material {
             Material::RoughPlastic { diffuse, roughness, ior } => {
                 Bsdf::RoughPlastic { diffuse: albedo(diffuse), alpha: roughness_to_alpha(*roughness), eta: *ior }
             }
+            Material::NormalMapped { base, .. } => base.bsdf(uv, p),
+        }
+    }
+
+    /// The shading normal of `hit` on this material: the surface's own, or bent by a normal map.
+    pub fn shading_normal(&self, hit: &SurfaceHit) -> Vec3 {
+        match self {
+            Material::Diffuse { .. }
+            | Material::Mirror { .. }
+            | Material::Dielectric { .. }
+            | Material::RoughConductor { .. }
+            | Material::RoughPlastic { .. } => hit.ns,
+            Material::NormalMapped { map, .. } => map.shading_normal(hit),
         }
     }
 
@@ -257,6 +275,10 @@ impl Material {
                 } else {
                     Err(format!("ior {ior} of a plastic coating must be a number ≥ 1"))
                 }
+            }
+            Material::NormalMapped { base, map } => {
+                base.validate()?;
+                map.validate()
             }
         }
     }

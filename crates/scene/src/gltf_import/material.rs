@@ -10,14 +10,15 @@
 //! Roughness means the same in both (GGX `α = roughness²`). Emission is `emissiveFactor` times
 //! `KHR_materials_emissive_strength`, constant over the surface (an emissive texture is ignored,
 //! with a warning), one-sided unless the material is `doubleSided`. Base-colour textures are
-//! decoded from sRGB to linear; their alpha, the metallic–roughness, normal and occlusion
-//! textures are ignored (a warning names the material).
+//! decoded from sRGB to linear; a normal texture (read as linear data, with its `scale`) bends
+//! the shading normal ([`NormalMap`]); alpha, the metallic–roughness and occlusion textures are
+//! ignored (a warning names the material).
 
 use super::named;
 use render::color::Rgb;
 use render::image_io::{srgb_to_linear, ImageData};
 use render::material::microfacet::SMOOTH_ALPHA;
-use render::material::{ConductorFresnel, Material};
+use render::material::{ConductorFresnel, Material, NormalMap};
 use render::texture::Texture;
 use render::world::Emission;
 use std::path::Path;
@@ -51,7 +52,6 @@ pub(super) fn materials(
     for m in document.materials() {
         let name = named("material", m.index().unwrap_or(0), m.name());
         let ignored: Vec<&str> = [
-            (m.normal_texture().is_some(), "normal"),
             (m.occlusion_texture().is_some(), "occlusion"),
             (m.pbr_metallic_roughness().metallic_roughness_texture().is_some(), "metallic-roughness"),
             (m.emissive_texture().is_some(), "emissive"),
@@ -63,11 +63,11 @@ pub(super) fn materials(
             warnings.push(format!("{name}: its {} texture(s) are ignored", ignored.join(", ")));
         }
         let base_colour = base_colour(&m, &name, base, buffers, &mut images, warnings)?;
-        mapped.push(GltfMaterial {
-            name: m.name().map(str::to_string),
-            material: surface(&m, base_colour),
-            emission: emission(&m, &name)?,
-        });
+        let mut material = surface(&m, base_colour);
+        if let Some(map) = normal_map(&m, &name, base, buffers, warnings)? {
+            material = Material::NormalMapped { base: Box::new(material), map };
+        }
+        mapped.push(GltfMaterial { name: m.name().map(str::to_string), material, emission: emission(&m, &name)? });
     }
     Ok(mapped)
 }
@@ -134,6 +134,36 @@ fn base_colour(
     Ok(Texture::Image { image: Arc::new(data), uv_scale: [1.0, 1.0] })
 }
 
+/// The normal texture, its texels taken as they are (normal maps are not sRGB-encoded).
+fn normal_map(
+    m: &gltf::Material<'_>,
+    name: &str,
+    base: &Path,
+    buffers: &[gltf::buffer::Data],
+    warnings: &mut Vec<String>,
+) -> Result<Option<NormalMap>, String> {
+    let Some(info) = m.normal_texture() else { return Ok(None) };
+    if info.tex_coord() != 0 {
+        warnings.push(format!("{name}: its normal texture uses TEXCOORD_{}; TEXCOORD_0 is used", info.tex_coord()));
+    }
+    let scale = f64::from(info.scale());
+    if !scale.is_finite() {
+        return Err(format!("{name}: its normalTexture.scale {} is not finite", info.scale()));
+    }
+    let image = info.texture().source();
+    let (width, height, pixels) = load(&image, base, buffers, Encoding::Linear)?;
+    let data = ImageData::new(width, height, pixels)
+        .ok_or_else(|| format!("{}: has no pixels", named("image", image.index(), image.name())))?;
+    Ok(Some(NormalMap { image: Arc::new(data), scale }))
+}
+
+/// How an image's 8- and 16-bit values are meant: colours (sRGB) or data (linear).
+#[derive(Clone, Copy)]
+enum Encoding {
+    Srgb,
+    Linear,
+}
+
 /// The linear RGB pixels of an sRGB-encoded image, decoded once per image.
 fn decode(
     image: &gltf::Image<'_>,
@@ -144,6 +174,21 @@ fn decode(
     if let Some(Some(decoded)) = images.get(image.index()) {
         return Ok(decoded.clone());
     }
+    let (width, height, pixels) = load(image, base, buffers, Encoding::Srgb)?;
+    let decoded = (width, height, Arc::new(pixels));
+    if let Some(slot) = images.get_mut(image.index()) {
+        *slot = Some(decoded.clone());
+    }
+    Ok(decoded)
+}
+
+/// The pixels of `image`, as `encoding` says its values are meant.
+fn load(
+    image: &gltf::Image<'_>,
+    base: &Path,
+    buffers: &[gltf::buffer::Data],
+    encoding: Encoding,
+) -> Result<(usize, usize, Vec<Rgb>), String> {
     let what = named("image", image.index(), image.name());
     let source = match image.source() {
         gltf::image::Source::Uri { uri, .. } => format!("{what} ('{}')", super::short(uri)),
@@ -151,17 +196,14 @@ fn decode(
     };
     let data = super::contained(|| gltf::image::Data::from_source(image.source(), Some(base), buffers), &source)?
         .map_err(|e| format!("{source}: cannot load: {e}"))?;
-    let pixels = linear_pixels(&data).ok_or_else(|| format!("{source}: unsupported pixel format"))?;
-    let decoded = (data.width as usize, data.height as usize, Arc::new(pixels));
-    if let Some(slot) = images.get_mut(image.index()) {
-        *slot = Some(decoded.clone());
-    }
-    Ok(decoded)
+    let pixels = linear_pixels(&data, encoding).ok_or_else(|| format!("{source}: unsupported pixel format"))?;
+    Ok((data.width as usize, data.height as usize, pixels))
 }
 
-/// 8- and 16-bit grey, grey–alpha, RGB and RGBA images, sRGB-decoded (alpha dropped), row by
-/// row from the top; `None` for float formats or data that does not fill the image.
-fn linear_pixels(data: &gltf::image::Data) -> Option<Vec<Rgb>> {
+/// 8- and 16-bit grey, grey–alpha, RGB and RGBA images, sRGB-decoded if `encoding` says so
+/// (alpha dropped), row by row from the top; `None` for float formats or data that does not fill
+/// the image.
+fn linear_pixels(data: &gltf::image::Data, encoding: Encoding) -> Option<Vec<Rgb>> {
     use gltf::image::Format as F;
     let (channels, bytes) = match data.format {
         F::R8 => (1, 1),
@@ -179,12 +221,16 @@ fn linear_pixels(data: &gltf::image::Data) -> Option<Vec<Rgb>> {
     if data.pixels.len() < count * stride {
         return None;
     }
+    let decode = |v: f32| match encoding {
+        Encoding::Srgb => srgb_to_linear(v),
+        Encoding::Linear => v,
+    };
     let channel = |px: &[u8], c: usize| -> f32 {
         let c = if channels < 3 { 0 } else { c };
         if bytes == 1 {
-            srgb_to_linear(f32::from(px[c]) / 255.0)
+            decode(f32::from(px[c]) / 255.0)
         } else {
-            srgb_to_linear(f32::from(u16::from_le_bytes([px[2 * c], px[2 * c + 1]])) / 65535.0)
+            decode(f32::from(u16::from_le_bytes([px[2 * c], px[2 * c + 1]])) / 65535.0)
         }
     };
     Some(
