@@ -32,6 +32,10 @@ fn every_fate_is_reported() {
         v["fate"].as_str().unwrap().to_owned()
     };
     assert_eq!(fate(&["--spacetime", "kerr", "--spin", "0.9", "--impact", "2"]), "captured");
+    // Reissner–Nordström, Q = 0.8 M: r_ph = (3M + √(9M² − 8Q²))/2, critical impact parameter
+    // b_c = r_ph²/√(r_ph² − 2M r_ph + Q²) = 4.5460 M.
+    let rn = |b: &str| fate(&["--spacetime", "reissner-nordstrom", "--charge", "0.8", "--impact", b]);
+    assert_eq!((rn("4.53").as_str(), rn("4.56").as_str()), ("captured", "escaped"));
     assert_eq!(fate(&["--spacetime", "ellis", "--throat", "1", "--impact", "0.5"]), "traversed");
     assert_eq!(fate(&["--spacetime", "minkowski", "--impact", "1"]), "escaped");
     assert_eq!(

@@ -10,6 +10,8 @@ pub enum SpacetimeKind {
     Schwarzschild,
     Kerr,
     Ellis,
+    ReissnerNordstrom,
+    KerrNewman,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -23,12 +25,16 @@ pub struct Args {
     /// Which spacetime.
     #[arg(long)]
     spacetime: SpacetimeKind,
-    /// Mass M (Schwarzschild, Kerr).
+    /// Mass M (Schwarzschild, Kerr, Reissner–Nordström, Kerr–Newman).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     mass: f64,
-    /// Spin a, |a| ≤ M (Kerr); positive b is then the prograde side.
+    /// Spin a, |a| ≤ M (Kerr; a² + Q² ≤ M² for Kerr–Newman); positive b is then the prograde
+    /// side.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     spin: f64,
+    /// Charge Q, |Q| ≤ M (Reissner–Nordström, Kerr–Newman).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    charge: f64,
     /// Throat radius b₀ (Ellis).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     throat: f64,
@@ -67,8 +73,11 @@ fn spacetime(args: &Args) -> Result<Spacetime, String> {
         SpacetimeKind::Schwarzschild => Spacetime::schwarzschild(args.mass),
         SpacetimeKind::Kerr => Spacetime::kerr(args.mass, args.spin),
         SpacetimeKind::Ellis => Spacetime::ellis(args.throat),
+        SpacetimeKind::ReissnerNordstrom => Spacetime::reissner_nordstrom(args.mass, args.charge),
+        SpacetimeKind::KerrNewman => Spacetime::kerr_newman(args.mass, args.spin, args.charge),
     };
-    s.map_err(|e| format!("{:?} spacetime: {e}", args.spacetime).to_lowercase())
+    let name = args.spacetime.to_possible_value().map_or(String::new(), |v| v.get_name().to_owned());
+    s.map_err(|e| format!("{name} spacetime: {e}"))
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
