@@ -130,3 +130,16 @@ pub(super) fn radial_frame<M: PlaneMetric>(metric: &M, p: [f64; 3]) -> LocalFram
 pub(super) fn radial_lapse<M: PlaneMetric>(metric: &M, p: [f64; 3]) -> f64 {
     metric.u_of_world_radius(crate::tensor::norm3(&p)).map_or(1.0, |u| metric.lapse(u))
 }
+
+/// Where an observer can stay at rest around a static hole of one region with its horizon at
+/// `horizon` (none for mass 0): anywhere outside it.
+pub(super) fn rest_outside_horizon(region: Region, p: [f64; 3], horizon: Option<f64>) -> Result<(), NoRest> {
+    if region == Region::Lower {
+        return Err(NoRest::NoSuchRegion);
+    }
+    let radius = crate::tensor::norm3(&p);
+    match horizon {
+        Some(horizon) if radius <= horizon => Err(NoRest::InsideHorizon { radius, horizon }),
+        _ => Ok(()),
+    }
+}

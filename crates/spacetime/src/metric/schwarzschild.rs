@@ -4,7 +4,9 @@
 //! No poles, and the horizon `r = 2M` is an ordinary place in this chart, so a backward-traced
 //! ray that falls in crosses it and is stopped there.
 
-use super::capabilities::{radial_frame, radial_lapse, Capabilities, LocalFrame, NoRest, Tracers};
+use super::capabilities::{
+    radial_frame, radial_lapse, rest_outside_horizon, Capabilities, LocalFrame, NoRest, Tracers,
+};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
 use crate::geodesic::connect::Connector;
@@ -132,14 +134,7 @@ impl Capabilities for Schwarzschild {
     }
 
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest> {
-        if region == Region::Lower {
-            return Err(NoRest::NoSuchRegion);
-        }
-        let (radius, horizon) = (norm3(&p), self.horizon_radius());
-        if self.mass > 0.0 && radius <= horizon {
-            return Err(NoRest::InsideHorizon { radius, horizon });
-        }
-        Ok(())
+        rest_outside_horizon(region, p, (self.mass > 0.0).then(|| self.horizon_radius()))
     }
 
     fn local_frame(&self, _region: Region, p: [f64; 3]) -> LocalFrame {
