@@ -3,6 +3,7 @@
 //! Bending angles are written as integrals whose flat-space part is subtracted analytically, so
 //! that tiny weak-field angles keep full relative precision, and evaluated by adaptive quadrature.
 
+use crate::metric::Shape;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Tanh–sinh (double exponential) quadrature of `f` on `[a, b]` to relative tolerance `rel_tol`
@@ -146,6 +147,43 @@ pub fn ellis_deflection(throat: f64, b: f64) -> f64 {
         let k = b / throat;
         let integrand = |theta: f64| (1.0 - (k * theta.sin()).powi(2)).powf(-0.5);
         2.0 * k * integrate(&integrand, 0.0, FRAC_PI_2, 1e-13) - PI
+    }
+}
+
+/// Azimuth swept by a ray of impact parameter `b` through a Morris–Thorne wormhole of any
+/// [`Shape`] (`Φ = 0`), minus π: `2∫ b dl / (r √(r² − b²)) − π`, from the turning point
+/// `r(l_t) = b` outwards for `b > ρ` (the ray turns back), over all `l` for `b < ρ` (it goes
+/// through).
+///
+/// For `b > ρ`, with `r = b/sin θ` the flat part is `π` exactly and
+/// `α = 2∫₀^{π/2} (1/r_l − 1) dθ`, `r_l = dr/dl` at `r`: smooth, of the size of the bending, and
+/// finite at the turning point where `r_l > 0`. For `b < ρ`, `2∫₀^∞` splits into the part with
+/// `r = ρ` (`|l| ≤ a`, where [`Shape::proper_distance`]`(ρ) = a`) and `l = a + ρ tan θ` beyond.
+pub fn wormhole_deflection<S: Shape>(shape: &S, b: f64) -> f64 {
+    let throat = shape.throat();
+    if b > throat {
+        let integrand = |theta: f64| {
+            let sin = theta.sin();
+            if sin <= 0.0 {
+                return 0.0;
+            }
+            let slope = shape.radius(shape.proper_distance(b / sin)).slope;
+            (1.0 - slope) / slope
+        };
+        2.0 * integrate(&integrand, 0.0, FRAC_PI_2, 1e-13)
+    } else {
+        let a = shape.proper_distance(throat);
+        let cylinder = a * b / (throat * ((throat - b) * (throat + b)).sqrt());
+        let integrand = |theta: f64| {
+            let (sin, cos) = theta.sin_cos();
+            let r = shape.radius(a + throat * sin / cos).r;
+            let root = ((r - b) * (r + b)).sqrt();
+            if cos <= 0.0 || !root.is_finite() {
+                return b / throat;
+            }
+            b * throat / (cos * cos * r * root)
+        };
+        2.0 * (cylinder + integrate(&integrand, 0.0, FRAC_PI_2, 1e-13)) - PI
     }
 }
 

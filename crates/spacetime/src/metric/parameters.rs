@@ -3,7 +3,7 @@
 //! the spacetime rebuilt from new values by its validating constructor, so that a changed value
 //! can never make a metric a scene file could not.
 
-use super::{ParameterError, Spacetime};
+use super::{Dneg, ParameterError, Spacetime};
 
 /// A parameter of a spacetime: its value and the range (inclusive) a user may move it over.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,6 +46,15 @@ fn family(spacetime: &Spacetime) -> (Vec<(&'static str, f64, Span)>, Rebuild) {
             (vec![("mass", h.mass, NonNegative), ("spin", h.spin, Signed), ("charge", h.charge, Signed)], |v| {
                 Spacetime::kerr_newman(v[0], v[1], v[2])
             })
+        }
+        Spacetime::Wormhole(w) => {
+            let Dneg { throat, length, lensing_width } = w.shape;
+            let listed = vec![
+                ("throat", throat, Positive),
+                ("length", length, NonNegative),
+                ("lensing_width", lensing_width, Positive),
+            ];
+            (listed, |v| Spacetime::wormhole(v[0], v[1], v[2]))
         }
     }
 }
@@ -128,6 +137,7 @@ mod tests {
             Spacetime::ellis(2.0).expect("valid"),
             Spacetime::reissner_nordstrom(1.0, 0.4).expect("valid"),
             Spacetime::kerr_newman(1.0, 0.6, -0.5).expect("valid"),
+            Spacetime::wormhole(1.0, 0.01, 0.05).expect("valid"),
         ] {
             let values: Vec<(&str, f64)> = s.parameters().iter().map(|p| (p.name, p.value)).collect();
             assert_eq!(s.with_parameters(&values), Ok(s));
