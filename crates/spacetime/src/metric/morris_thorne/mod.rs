@@ -63,7 +63,7 @@ pub struct MorrisThorne<S: Shape> {
 /// The *Interstellar* wormhole (James et al. 2015).
 pub type Wormhole = MorrisThorne<Dneg>;
 
-/// The smallest `u`, in throat radii, the in-plane functions are evaluated at: `u = 0`
+/// The smallest `u`, in inverse throat radii, the in-plane functions are evaluated at: `u = 0`
 /// (infinity) has no chart point, and every function used there has its limit well above this.
 const U_FLOOR: f64 = 1e-100;
 
@@ -80,7 +80,7 @@ struct Stretch {
     excess: f64,
 }
 
-/// Everything at one chart radius `s`: `l`, the shape there, `Ω = dL/ds` and the stretch.
+/// Everything at one chart radius `s`: the shape there, `Ω = dL/ds` and the stretch of `l`.
 #[derive(Clone, Copy, Debug)]
 struct ChartPoint {
     radius: Radius,
