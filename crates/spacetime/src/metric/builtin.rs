@@ -2,7 +2,9 @@
 //! construction.
 
 use super::capabilities::{Capabilities, Tracers};
-use super::{Ellis, Kerr, KerrNewman, Metric, Minkowski, Region, ReissnerNordstrom, Schwarzschild};
+use super::{
+    Dneg, Ellis, Kerr, KerrNewman, Metric, Minkowski, MorrisThorne, Region, ReissnerNordstrom, Schwarzschild, Wormhole,
+};
 
 /// A built-in spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -13,6 +15,8 @@ pub enum Spacetime {
     Ellis(Ellis),
     ReissnerNordstrom(ReissnerNordstrom),
     KerrNewman(KerrNewman),
+    /// The Morris–Thorne wormhole of *Interstellar* ([`Dneg`]'s shape).
+    Wormhole(Wormhole),
 }
 
 /// A parameter outside the spacetime's domain.
@@ -78,6 +82,19 @@ impl Spacetime {
         Ok(Spacetime::Ellis(Ellis::new(throat)))
     }
 
+    /// The wormhole of *Interstellar* (James et al. 2015): throat radius `throat > 0`, interior
+    /// length `length ≥ 0`, lensing width `lensing_width > 0`.
+    pub fn wormhole(throat: f64, length: f64, lensing_width: f64) -> Result<Self, ParameterError> {
+        if !(throat.is_finite() && throat > 0.0) {
+            return Err(ParameterError(format!("throat radius must be a finite number > 0, got {throat}")));
+        }
+        let length = finite_non_negative("length", length)?;
+        if !(lensing_width.is_finite() && lensing_width > 0.0) {
+            return Err(ParameterError(format!("lensing width must be a finite number > 0, got {lensing_width}")));
+        }
+        Ok(Spacetime::Wormhole(MorrisThorne::new(Dneg::new(throat, length, lensing_width))))
+    }
+
     /// Stable lower-case name, as in scene files.
     pub fn name(&self) -> &'static str {
         match self {
@@ -87,6 +104,7 @@ impl Spacetime {
             Spacetime::Ellis(_) => "ellis",
             Spacetime::ReissnerNordstrom(_) => "reissner-nordstrom",
             Spacetime::KerrNewman(_) => "kerr-newman",
+            Spacetime::Wormhole(_) => "wormhole",
         }
     }
 
@@ -110,6 +128,7 @@ impl Spacetime {
             Spacetime::Ellis(m) => m,
             Spacetime::ReissnerNordstrom(m) => m,
             Spacetime::KerrNewman(m) => m,
+            Spacetime::Wormhole(m) => m,
         }
     }
 
@@ -123,6 +142,7 @@ impl Spacetime {
             Spacetime::Ellis(m) => m.choose_tracer(tracers),
             Spacetime::ReissnerNordstrom(m) => m.choose_tracer(tracers),
             Spacetime::KerrNewman(m) => m.choose_tracer(tracers),
+            Spacetime::Wormhole(m) => m.choose_tracer(tracers),
         }
     }
 
@@ -152,5 +172,10 @@ mod tests {
         assert!(Spacetime::kerr_newman(1.0, 0.6, 0.81).is_err());
         assert!(Spacetime::kerr_newman(1.0, f64::NAN, 0.0).is_err());
         assert_eq!(Spacetime::ellis(2.0).unwrap().name(), "ellis");
+        assert!(Spacetime::wormhole(1.0, 0.0, 0.05).is_ok());
+        assert!(Spacetime::wormhole(0.0, 0.01, 0.05).is_err());
+        assert!(Spacetime::wormhole(1.0, -0.01, 0.05).is_err());
+        assert!(Spacetime::wormhole(1.0, 0.01, 0.0).is_err());
+        assert!(Spacetime::wormhole(1.0, f64::INFINITY, 0.05).is_err());
     }
 }
