@@ -6,7 +6,7 @@ use crate::geometry::Vec3;
 use spacetime::geodesic::aim::{aim, AimSettings};
 use spacetime::geodesic::plane::PlaneMetric;
 use spacetime::geodesic::{Integrator, TraceSettings};
-use spacetime::metric::{Metric, Tracers};
+use spacetime::metric::{LocalFrame, Metric, Tracers};
 use spacetime::{Region, Tetrad};
 
 /// Shots an aim may take: Newton's method converges in two or three from a good first shot;
@@ -69,14 +69,38 @@ impl Propagator {
         };
         let settings = AimSettings { trace, tolerance: self.epsilon, max_shots: MAX_SHOTS };
         let target = self.to_chart(to).to_array();
-        let found = aim(metric, x, &frame, target, self.to_chart(to - from).to_array(), &settings)?;
+        // The first guess, in the frame whose axes follow the chart's: the chart's straight line.
+        let y = metric.world_to_chart(region, target, 0.0)?;
+        let guess = [y[1] - x[1], y[2] - x[2], y[3] - x[3]];
+        let found = aim(metric, x, &frame, target, guess, &settings)?;
         let (end, _) = Tetrad::local_observer(metric, &found.end.x).ok()?.backward_direction(&found.end.p);
+        let end_tangent = self.to_world(Vec3::from_array(found.end_tangent));
         Some(Aimed {
-            start: self.to_world(Vec3::from_array(found.direction)),
-            end: self.to_world(Vec3::from_array(end)),
-            end_tangent: self.to_world(Vec3::from_array(found.end_tangent)),
+            start: self.local_direction(region, from, Vec3::from_array(found.direction), found.start_tangent),
+            end: self.local_direction(region, to, Vec3::from_array(end), found.end_tangent),
+            end_tangent,
             solid_angle_per_area: found.solid_angle_per_area,
         })
+    }
+
+    /// The direction, in the renderer's local frame at world point `p`, of a ray with unit
+    /// world tangent `tangent` (chart axes) that the chart's local observer measures along
+    /// `measured` (chart axes). Where the renderer's frame is the chart observer's (a tetrad)
+    /// that is `measured`; a radially scaled frame maps world vectors by `diag(1/κ, 1, 1)`
+    /// ([`LocalFrame::Radial`]), whose axes are the world's even where the chart's are not (the
+    /// lower region of a wormhole, whose world is the chart turned inside out).
+    fn local_direction(&self, region: Region, p: Vec3, measured: Vec3, tangent: [f64; 3]) -> Vec3 {
+        match self.local_frame(region, p) {
+            LocalFrame::Tetrad { .. } => self.to_world(measured),
+            LocalFrame::Radial { kappa } => {
+                let t = self.to_world(Vec3::from_array(tangent));
+                if p == Vec3::ZERO {
+                    return t;
+                }
+                (t + ((1.0 / kappa - 1.0) * t.dot(p) / p.length_squared()) * p).normalize()
+            }
+            LocalFrame::None => self.to_world(Vec3::from_array(tangent)),
+        }
     }
 }
 

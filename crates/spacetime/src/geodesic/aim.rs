@@ -61,6 +61,8 @@ pub struct AimSettings {
 pub struct Aim {
     /// Unit direction the ray leaves the start in, in the frame it was aimed in.
     pub direction: [f64; 3],
+    /// Unit world tangent at the start.
+    pub start_tangent: [f64; 3],
     /// Unit world tangent at the target.
     pub end_tangent: [f64; 3],
     /// `dΩ/dA⊥`: solid angle at the start per world area across `end_tangent` at the target.
@@ -101,8 +103,11 @@ pub fn aim<M: Metric + ?Sized>(
         if miss <= settings.tolerance {
             // |det J|: the area the two spreads span, projected across the tangent.
             let spread_area = dot3(&cross3(&pass.spread[0], &pass.spread[1]), &pass.tangent).abs();
+            let g = metric.metric(&x);
+            let (_, start_tangent) = shooter.world(&State { x, p: frame.backward_momentum(&g, direction, 1.0) })?;
             let aim = Aim {
                 direction,
+                start_tangent,
                 end_tangent: pass.tangent,
                 solid_angle_per_area: 1.0 / spread_area,
                 end: pass.end,
