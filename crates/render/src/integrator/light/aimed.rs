@@ -17,18 +17,12 @@
 //! any ray is traced: it must arrive at the sampled point's light within the tolerance the
 //! chord test places hits to.
 
-use super::point::{choice, sample_point, solid_angle_density};
+use super::point::{choice, sample_point, solid_angle_density, traced_arrival};
 use super::{contribution, Bounce, Lit, Shading};
 use crate::color::Rgb;
-use crate::integrator::path::{leave, shift};
 use crate::integrator::stats::PathStats;
-use crate::propagator::{Arrival, RayEnd};
+use crate::propagator::Arrival;
 use crate::sampling::Sampler;
-
-/// A traced aim counts as reaching the sampled point when it hits the light within this many
-/// chord tolerances ε of it (the chord test places hits to within ~ε of the curve, the aim
-/// passes within ε of the point).
-const ARRIVAL_TOLERANCE: f64 = 64.0;
 
 /// A BSDF-sampled ray is the aimed one when their start directions differ by less than this
 /// many chord tolerances ε per unit distance between the ends: the hit it found lies within ~ε
@@ -51,21 +45,7 @@ pub(super) fn direct(
     let emitted = light.emission.radiance_towards(normal_local, -aimed.end);
     let pdf = solid_angle_density(light.density(), light.normal, aimed.end_tangent, aimed.solid_angle_per_area);
     contribution(shading, aimed.start, emitted, pdf, || {
-        let origin = leave(at.hit.p, at.hit.ng, shading.ng, aimed.start);
-        stats.rays += 1;
-        match lit.propagator.trace(lit.world, at.region, origin, aimed.start) {
-            RayEnd::Hit(a)
-                if a.object == light.object
-                    && (a.hit.p - light.point).length() <= ARRIVAL_TOLERANCE * lit.propagator.epsilon() =>
-            {
-                Some(shift(a.energy))
-            }
-            RayEnd::Failed => {
-                stats.fates.failed += 1;
-                None
-            }
-            RayEnd::Hit(_) | RayEnd::Escaped { .. } | RayEnd::Captured => None,
-        }
+        traced_arrival(lit, at, shading.ng, aimed.start, (light.object, light.point), stats)
     })
 }
 

@@ -1,8 +1,16 @@
 //! A point sampled on a light, and the solid-angle density a light ray to it has.
 
+use super::Lit;
 use crate::geometry::Vec3;
-use crate::propagator::Arrival;
+use crate::integrator::path::{leave, shift};
+use crate::integrator::stats::PathStats;
+use crate::propagator::{Arrival, RayEnd};
 use crate::world::{Emission, World};
+
+/// A traced light ray counts as reaching its light point when it hits the light within this
+/// many chord tolerances ε of it (the chord test places hits to within ~ε of the curve, and a
+/// connection passes within ~ε of its point).
+const ARRIVAL_TOLERANCE: f64 = 64.0;
 
 /// A point sampled on a light.
 pub(super) struct LightPoint {
@@ -46,4 +54,31 @@ pub(super) fn choice(world: &World, arrival: &Arrival) -> Option<(f64, f64)> {
 /// `dΩ/dA⊥` (solid angle at the start per world area across the beam), for area density `p_A`.
 pub(super) fn solid_angle_density(area_density: f64, normal: Vec3, tangent: Vec3, solid_angle_per_area: f64) -> f64 {
     area_density / (normal.dot(tangent).abs() * solid_angle_per_area)
+}
+
+/// Whether the light ray leaving the shading point of `at` (local geometric normal `ng_local`)
+/// along local direction `wi` reaches the point `point` of light `object`, traced against the
+/// scene as any ray is: the radiance factor `(E_x/E_y)⁴` if so, else `None`.
+pub(super) fn traced_arrival(
+    lit: Lit<'_>,
+    at: &Arrival,
+    ng_local: Vec3,
+    wi: Vec3,
+    (object, point): (usize, Vec3),
+    stats: &mut PathStats,
+) -> Option<f32> {
+    let origin = leave(at.hit.p, at.hit.ng, ng_local, wi);
+    stats.rays += 1;
+    match lit.propagator.trace(lit.world, at.region, origin, wi) {
+        RayEnd::Hit(a)
+            if a.object == object && (a.hit.p - point).length() <= ARRIVAL_TOLERANCE * lit.propagator.epsilon() =>
+        {
+            Some(shift(a.energy))
+        }
+        RayEnd::Failed => {
+            stats.fates.failed += 1;
+            None
+        }
+        RayEnd::Hit(_) | RayEnd::Escaped { .. } | RayEnd::Captured => None,
+    }
 }

@@ -34,21 +34,17 @@
 //!
 //! Other curved spacetimes aim their light rays ([`super::aimed`]).
 
-use super::point::{choice, sample_point, solid_angle_density, LightPoint};
+use super::point::{choice, sample_point, solid_angle_density, traced_arrival, LightPoint};
 use super::{contribution, Lit, Shading};
 use crate::color::Rgb;
 use crate::geometry::Vec3;
-use crate::integrator::path::{leave, shift};
+use crate::integrator::path::shift;
 use crate::integrator::stats::PathStats;
-use crate::propagator::{Arrival, Propagator, RayEnd};
+use crate::propagator::{Arrival, Propagator};
 use crate::sampling::Sampler;
 use crate::world::World;
 use spacetime::geodesic::connect::{short_way_arrives_behind, Connection, Way, Waypoints};
 use std::f64::consts::PI;
-
-/// A traced connection counts as reaching the sampled point when it hits the light within this
-/// many chord tolerances ε of it (the chord test places hits to within ~ε of the curve).
-const ARRIVAL_TOLERANCE: f64 = 64.0;
 
 /// How fast the probability of trying the long way falls with the azimuth it sweeps beyond π
 /// ([`way_probability`]).
@@ -203,21 +199,7 @@ impl Candidate<'_> {
         ng_local: Vec3,
         stats: &mut PathStats,
     ) -> Option<f32> {
-        let origin = leave(at.hit.p, at.hit.ng, ng_local, self.wi);
-        stats.rays += 1;
-        match propagator.trace(world, at.region, origin, self.wi) {
-            RayEnd::Hit(a)
-                if a.object == self.object
-                    && (a.hit.p - self.point).length() <= ARRIVAL_TOLERANCE * propagator.epsilon() =>
-            {
-                Some(shift(a.energy))
-            }
-            RayEnd::Failed => {
-                stats.fates.failed += 1;
-                None
-            }
-            _ => None,
-        }
+        traced_arrival(Lit { world, propagator }, at, ng_local, self.wi, (self.object, self.point), stats)
     }
 }
 
@@ -244,6 +226,8 @@ fn connection_density(area_density: f64, normal: Vec3, connection: &Connection) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrator::path::leave;
+    use crate::propagator::RayEnd;
     use crate::settings::Intersection;
     use crate::test_scenes::{floor_lamp_board_ball, uniform};
     use spacetime::{Region, Schwarzschild, Spacetime};
