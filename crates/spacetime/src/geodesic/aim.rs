@@ -29,7 +29,7 @@ use super::bundle::{Bundle, BUNDLE};
 use super::{Fate, HamiltonianTracer, State, TraceSettings, Visit};
 use crate::metric::{Metric, Region};
 use crate::observer::Tetrad;
-use crate::tensor::{contract, cross3, dot3, norm3, normalize3, scale3, sub3, Vector4};
+use crate::tensor::{contract, cross3, dot3, norm3, normalize3, scale3, sub3, Matrix4, Vector4};
 
 /// The largest turn of the start direction in one Newton step, in radians: beyond it the
 /// linear model of the miss is not trusted.
@@ -96,14 +96,14 @@ pub fn aim<M: Metric + ?Sized>(
     guess: [f64; 3],
     settings: &AimSettings,
 ) -> Option<Aim> {
-    let shooter = Shooter { metric, x, frame, target, region: metric.region(&x), settings };
+    let g = metric.metric(&x);
+    let shooter = Shooter { metric, x, g, frame, target, region: metric.region(&x), settings };
     let (mut direction, mut pass, mut shots) = first_pass(&shooter, normalize3(&guess))?;
     loop {
         let miss = norm3(&pass.miss);
         if miss <= settings.tolerance {
             // |det J|: the area the two spreads span, projected across the tangent.
             let spread_area = dot3(&cross3(&pass.spread[0], &pass.spread[1]), &pass.tangent).abs();
-            let g = metric.metric(&x);
             let (_, start_tangent) = shooter.world(&State { x, p: frame.backward_momentum(&g, direction, 1.0) })?;
             let aim = Aim {
                 direction,
@@ -204,6 +204,8 @@ fn perpendicular(v: &[f64; 3]) -> [f64; 3] {
 struct Shooter<'a, M: Metric + ?Sized> {
     metric: &'a M,
     x: Vector4,
+    /// The metric at `x`.
+    g: Matrix4,
     frame: &'a Tetrad,
     target: [f64; 3],
     region: Region,
@@ -214,16 +216,16 @@ impl<M: Metric + ?Sized> Shooter<'_, M> {
     /// Traces the ray along `direction` with its bundle to where it first passes closest to the
     /// target; `None` if it ends first, or moves away from the target from the start.
     fn shoot(&self, direction: [f64; 3]) -> Option<Pass> {
-        let g = self.metric.metric(&self.x);
-        let p = self.frame.backward_momentum(&g, direction, 1.0);
-        let rest = self.frame.backward_momentum(&g, [0.0; 3], 1.0);
+        let g = &self.g;
+        let p = self.frame.backward_momentum(g, direction, 1.0);
+        let rest = self.frame.backward_momentum(g, [0.0; 3], 1.0);
         let mut y = [0.0; BUNDLE];
         y[..4].copy_from_slice(&self.x);
         y[4..8].copy_from_slice(&p);
         for (k, axis) in axes(&direction).iter().enumerate() {
             // The momentum is affine in the direction: a turn about an axis moves it by the
             // axis's share of the frame.
-            let turned = self.frame.backward_momentum(&g, *axis, 1.0);
+            let turned = self.frame.backward_momentum(g, *axis, 1.0);
             for i in 0..4 {
                 y[8 + 8 * k + 4 + i] = turned[i] - rest[i];
             }
@@ -352,7 +354,8 @@ mod tests {
         assert!(aim.shots > 2, "the hole bends the ray: {} shots", aim.shots);
         // Shoot the rays of a small circle of directions about the aim and measure the area
         // their passes span across the end tangent.
-        let shooter = Shooter { metric: &kerr, x, frame: &frame, target, region: Region::Upper, settings: &s };
+        let g = kerr.metric(&x);
+        let shooter = Shooter { metric: &kerr, x, g, frame: &frame, target, region: Region::Upper, settings: &s };
         let (radius, n) = (1e-4, 64);
         let [e1, e2] = axes(&aim.direction);
         let t = aim.end_tangent;

@@ -42,7 +42,6 @@ use crate::integrator::path::shift;
 use crate::integrator::stats::PathStats;
 use crate::propagator::{Arrival, Propagator};
 use crate::sampling::Sampler;
-use crate::world::World;
 use spacetime::geodesic::connect::{short_way_arrives_behind, Connection, Way, Waypoints};
 use std::f64::consts::PI;
 
@@ -108,7 +107,7 @@ pub(super) fn direct(
             continue;
         }
         if let Some(light) = join(&point, lit.propagator, at, (way, probability), &mut waypoints) {
-            let visible = || light.arrives(lit.world, lit.propagator, at, shading.ng, stats);
+            let visible = || light.arrives(lit, at, shading.ng, stats);
             sum += contribution(shading, light.wi, light.emitted, light.pdf, visible);
         }
     }
@@ -153,23 +152,18 @@ impl Candidate<'_> {
     /// reaches the sampled point unoccluded: the radiance factor `(E_x/E_y)⁴` if so, else
     /// `None`. A connection whose triangle no object comes near (within ε) is seen without
     /// tracing it; any other is traced against the scene.
-    pub(super) fn arrives(
-        &self,
-        world: &World,
-        propagator: &Propagator,
-        at: &Arrival,
-        ng_local: Vec3,
-        stats: &mut PathStats,
-    ) -> Option<f32> {
-        if self.is_clear(world, propagator, at) {
+    pub(super) fn arrives(&self, lit: Lit<'_>, at: &Arrival, ng_local: Vec3, stats: &mut PathStats) -> Option<f32> {
+        if self.is_clear(lit, at) {
+            let propagator = lit.propagator;
             return Some(shift(propagator.lapse(at.region, at.hit.p) / propagator.lapse(at.region, self.point)));
         }
-        self.traced(world, propagator, at, ng_local, stats)
+        self.traced(lit, at, ng_local, stats)
     }
 
     /// Whether no object comes near the triangle that holds the connection, or else the
     /// triangles between its waypoints, except the two objects it joins, at its ends.
-    fn is_clear(&self, world: &World, propagator: &Propagator, at: &Arrival) -> bool {
+    fn is_clear(&self, lit: Lit<'_>, at: &Arrival) -> bool {
+        let Lit { world, propagator } = lit;
         let (x, y) = (at.hit.p.to_array(), self.point.to_array());
         let clear = |triangle: [[f64; 3]; 3], first: bool, last: bool| {
             let [a, z, b] = triangle.map(Vec3::from_array);
@@ -191,15 +185,8 @@ impl Candidate<'_> {
     }
 
     /// [`Candidate::arrives`] by tracing the connection against the scene.
-    fn traced(
-        &self,
-        world: &World,
-        propagator: &Propagator,
-        at: &Arrival,
-        ng_local: Vec3,
-        stats: &mut PathStats,
-    ) -> Option<f32> {
-        traced_arrival(Lit { world, propagator }, at, ng_local, self.wi, (self.object, self.point), stats)
+    fn traced(&self, lit: Lit<'_>, at: &Arrival, ng_local: Vec3, stats: &mut PathStats) -> Option<f32> {
+        traced_arrival(lit, at, ng_local, self.wi, (self.object, self.point), stats)
     }
 }
 
@@ -230,6 +217,7 @@ mod tests {
     use crate::propagator::RayEnd;
     use crate::settings::Intersection;
     use crate::test_scenes::{floor_lamp_board_ball, uniform};
+    use crate::world::World;
     use spacetime::{Region, Schwarzschild, Spacetime};
 
     /// The chord tracer round the test scene's hole (mass 0.3).
@@ -277,8 +265,9 @@ mod tests {
                 let mut waypoints = Waypoints::default();
                 let Some(candidate) = joined(&propagator, &at, &point, way, &mut waypoints) else { continue };
                 let mut stats = PathStats::default();
-                let traced = candidate.traced(&world, &propagator, &at, at.ng_local, &mut stats);
-                let clear = candidate.is_clear(&world, &propagator, &at);
+                let lit = Lit { world: &world, propagator: &propagator };
+                let traced = candidate.traced(lit, &at, at.ng_local, &mut stats);
+                let clear = candidate.is_clear(lit, &at);
                 match traced {
                     Some(shift) => {
                         seen += 1;

@@ -20,7 +20,7 @@ mod dneg;
 
 pub use dneg::Dneg;
 
-use super::capabilities::{radial_frame, Capabilities, LocalFrame, NoRest, Tracers};
+use super::capabilities::{radial_frame, rest_on_chart, Capabilities, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region, WorldPoint};
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
@@ -384,10 +384,7 @@ impl<S: Shape> Capabilities for MorrisThorne<S> {
     }
 
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest> {
-        match self.world_to_chart(region, p, 0.0) {
-            Some(_) => Ok(()),
-            None => Err(NoRest::OffChart { radius: norm3(&p), throat: self.shape.throat() }),
-        }
+        rest_on_chart(self, region, p, self.shape.throat())
     }
 
     fn local_frame(&self, _region: Region, p: [f64; 3]) -> LocalFrame {
