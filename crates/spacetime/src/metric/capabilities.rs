@@ -7,6 +7,7 @@
 //! Points are world points of a region in the chart's axes (a renderer rotates a scene's axis onto
 //! the chart's z first); spherically symmetric metrics do not care.
 
+use super::spin_twin::SpinTwin;
 use super::{Metric, Region};
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
@@ -61,6 +62,18 @@ impl std::fmt::Display for NoRest {
     }
 }
 
+/// How light running forwards in time is traced, for renderers that follow it from its sources
+/// (photon mapping): with the backward tracers, which follow light from its receivers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Forwards {
+    /// Time-symmetric: a ray forwards from a point along `n` runs along the backward ray from
+    /// there along `n`, seen with the same lapses.
+    Reversed,
+    /// A spinning hole: rays forwards are the backward rays of its spin-reversed twin, in the
+    /// chart [`SpinTwin`] maps to, which is regular on the future horizon they fall through.
+    SpinTwin(SpinTwin),
+}
+
 /// The tracers a renderer offers; a metric picks the one that fits it
 /// ([`Capabilities::choose_tracer`]), dispatched once per ray and generic inside.
 pub trait Tracers {
@@ -85,9 +98,8 @@ pub trait Capabilities: Metric {
     /// The radius of the throat joining two asymptotic regions; `None` for one region.
     fn throat(&self) -> Option<f64>;
 
-    /// Whether light rays reversed are light rays, with the same lapses: a static spacetime
-    /// (Kerr is only stationary; its reversed rays are those of the opposite spin).
-    fn is_time_symmetric(&self) -> bool;
+    /// How light running forwards in time is traced.
+    fn forwards(&self) -> Forwards;
 
     /// Whether an observer can stay at rest at world point `p` of `region`, and why not.
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest>;

@@ -2,7 +2,8 @@
 //! on every built-in spacetime), public so that a user's own [`Metric`] can be checked the same
 //! way. Each check panics with a message at the first failure, as a test does.
 
-use super::capabilities::{Capabilities, LocalFrame, NoRest, Tracers};
+use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
+use super::spin_twin::SpinTwin;
 use super::{Metric, Region};
 use crate::geodesic::plane::PlaneMetric;
 use crate::observer::Tetrad;
@@ -118,7 +119,8 @@ pub fn check_plane_metric<M: PlaneMetric>(m: &M, rho: f64) {
 /// lapse is `√(−g_tt)` there, a radially scaled frame stretches radial lengths by `1/κ` as the
 /// static observer measures them, flat space has lapse 1 and straight rays, and a
 /// time-symmetric spacetime bounds impact parameters (by at least the radius: light slows near
-/// mass and bends towards it).
+/// mass and bends towards it). A spin twin carries light rays across: the Hamiltonian is the
+/// same in both charts, and a future-directed ray of the hole is past-directed in the twin's.
 pub fn check_capabilities<M: Capabilities>(m: &M, region: Region, p: [f64; 3]) {
     let chart = m.world_to_chart(region, p, 0.0);
     let rest = m.rest(region, p);
@@ -153,12 +155,34 @@ pub fn check_capabilities<M: Capabilities>(m: &M, region: Region, p: [f64; 3]) {
         assert_eq!(m.observer_lapse(region, p), 1.0, "flat lapse");
         assert_eq!(chosen_tracer(m), "straight", "flat rays are straight");
     }
-    if m.is_time_symmetric() {
+    if let (Forwards::SpinTwin(twin), Some(x)) = (m.forwards(), chart) {
+        if !m.inside_horizon(&x) {
+            check_spin_twin(m, &twin, &x);
+        }
+    }
+    if m.forwards() == Forwards::Reversed {
         let r = crate::tensor::norm3(&p);
         let b = m.impact_bound(r);
         assert!(b.is_some_and(|b| b >= r), "impact bound for radius {r}: {b:?}");
     }
     if m.throat().is_none() {
         assert_eq!(region, Region::Upper, "one region");
+    }
+}
+
+/// Light carried to the twin's chart keeps its Hamiltonian (zero), and a ray leaving the local
+/// observer forwards in time runs backwards in the twin's.
+fn check_spin_twin<M: Metric>(m: &M, twin: &SpinTwin, x: &Vector4) {
+    let Ok(frame) = Tetrad::local_observer(m, x) else { return };
+    let twin_metric = twin.twin();
+    for n in [[1.0, 0.0, 0.0], [0.0, -0.6, 0.8], [-0.48, 0.64, -0.6]] {
+        // p = E(e₀ + n e), future-directed: minus the backward ray along −n.
+        let p = frame.backward_momentum(&m.metric(x), n.map(|c| -c), 1.0).map(|c| -c);
+        let (y, q) = twin.to_twin(x, &p);
+        let scale = p.iter().map(|c| c * c).sum::<f64>();
+        let h_twin = twin_metric.hamiltonian(&y, &q);
+        assert!(h_twin.abs() < 1e-10 * scale, "light at {x:?} along {n:?}: twin's H = {h_twin}");
+        let (dt, dt_twin) = (m.geodesic_rhs(x, &p).0[0], twin_metric.geodesic_rhs(&y, &q).0[0]);
+        assert!(dt > 0.0 && dt_twin < 0.0, "time orientation at {x:?} along {n:?}: dt/dλ {dt}, twin {dt_twin}");
     }
 }

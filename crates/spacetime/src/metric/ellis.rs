@@ -11,7 +11,7 @@
 //! upper region and `−` (antipodal) in the lower one, so a ray straight through the throat keeps
 //! its direction and neither region is mirrored. The throat is the sphere `|Y| = b₀` of both.
 
-use super::capabilities::{radial_frame, rest_on_chart, Capabilities, LocalFrame, NoRest, Tracers};
+use super::capabilities::{radial_frame, rest_on_chart, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region, WorldPoint};
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
@@ -223,8 +223,9 @@ impl Capabilities for Ellis {
         Some(self.throat)
     }
 
-    fn is_time_symmetric(&self) -> bool {
-        true
+    /// Static: reversed rays are rays.
+    fn forwards(&self) -> Forwards {
+        Forwards::Reversed
     }
 
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest> {

@@ -9,8 +9,9 @@
 //! the past horizon, which backward-traced rays cross. The ring singularity (r = 0, z = 0) lies
 //! inside the horizon, where rays are stopped.
 
-use super::capabilities::{Capabilities, LocalFrame, NoRest, Tracers};
+use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
+use super::spin_twin::SpinTwin;
 use super::user::Scalar;
 use super::{Metric, Region};
 use crate::geodesic::connect::Connector;
@@ -114,9 +115,9 @@ impl Capabilities for Kerr {
         None
     }
 
-    /// Reversing time reverses the spin; treated as stationary whatever the spin.
-    fn is_time_symmetric(&self) -> bool {
-        false
+    /// Reversing time reverses the spin (treated as stationary whatever the spin).
+    fn forwards(&self) -> Forwards {
+        Forwards::SpinTwin(SpinTwin::new(self.mass, self.spin, 0.0))
     }
 
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest> {

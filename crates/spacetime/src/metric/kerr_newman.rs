@@ -8,9 +8,10 @@
 //! `r₊ = M + √(M² − a² − Q²)`, and the circular equatorial photon orbits at the roots of
 //! `r² − 3Mr + 2Q² ± 2a√(Mr − Q²) = 0` (+ prograde).
 
-use super::capabilities::{Capabilities, LocalFrame, NoRest, Tracers};
+use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::kerr::{spheroidal, spheroidal_fields, spinning_frame, spinning_lapse, spinning_rest};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
+use super::spin_twin::SpinTwin;
 use super::Region;
 use crate::geodesic::connect::Connector;
 use crate::tensor::Vector4;
@@ -66,9 +67,9 @@ impl Capabilities for KerrNewman {
         None
     }
 
-    /// Reversing time reverses the spin; treated as stationary whatever the spin.
-    fn is_time_symmetric(&self) -> bool {
-        false
+    /// Reversing time reverses the spin (treated as stationary whatever the spin).
+    fn forwards(&self) -> Forwards {
+        Forwards::SpinTwin(SpinTwin::new(self.mass, self.spin, self.charge))
     }
 
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest> {

@@ -1,6 +1,6 @@
 //! Flat spacetime in Cartesian coordinates: `g = η`. Rays are straight lines.
 
-use super::capabilities::{Capabilities, LocalFrame, NoRest, Tracers};
+use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region};
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
@@ -93,8 +93,9 @@ impl Capabilities for Minkowski {
         None
     }
 
-    fn is_time_symmetric(&self) -> bool {
-        true
+    /// Static: reversed rays are rays.
+    fn forwards(&self) -> Forwards {
+        Forwards::Reversed
     }
 
     fn rest(&self, region: Region, _p: [f64; 3]) -> Result<(), NoRest> {

@@ -17,10 +17,11 @@ mod morris_thorne;
 mod parameters;
 mod reissner_nordstrom;
 mod schwarzschild;
+mod spin_twin;
 pub(crate) mod user;
 
 pub use builtin::{ParameterError, Spacetime};
-pub use capabilities::{Capabilities, LocalFrame, NoRest, Tracers};
+pub use capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 pub use ellis::Ellis;
 pub use kerr::Kerr;
 pub use kerr_newman::KerrNewman;
@@ -30,6 +31,7 @@ pub use morris_thorne::{Dneg, MorrisThorne, Radius, Shape, Wormhole};
 pub use parameters::Parameter;
 pub use reissner_nordstrom::ReissnerNordstrom;
 pub use schwarzschild::Schwarzschild;
+pub use spin_twin::SpinTwin;
 pub use user::{MetricFunction, Scalar, UserMetric};
 
 use crate::tensor::{contract, invert, quadratic, Covector4, Matrix4, Vector4};

@@ -11,7 +11,7 @@
 //! `u'' = −u + 3Mu² − 2Q²u³` by Runge–Kutta.
 
 use super::capabilities::{
-    radial_frame, radial_lapse, rest_outside_horizon, Capabilities, LocalFrame, NoRest, Tracers,
+    radial_frame, radial_lapse, rest_outside_horizon, Capabilities, Forwards, LocalFrame, NoRest, Tracers,
 };
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
@@ -151,8 +151,9 @@ impl Capabilities for ReissnerNordstrom {
         None
     }
 
-    fn is_time_symmetric(&self) -> bool {
-        true
+    /// Static: reversed rays are rays.
+    fn forwards(&self) -> Forwards {
+        Forwards::Reversed
     }
 
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest> {

@@ -5,7 +5,7 @@
 //! ray that falls in crosses it and is stopped there.
 
 use super::capabilities::{
-    radial_frame, radial_lapse, rest_outside_horizon, Capabilities, LocalFrame, NoRest, Tracers,
+    radial_frame, radial_lapse, rest_outside_horizon, Capabilities, Forwards, LocalFrame, NoRest, Tracers,
 };
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
@@ -129,8 +129,9 @@ impl Capabilities for Schwarzschild {
         None
     }
 
-    fn is_time_symmetric(&self) -> bool {
-        true
+    /// Static: reversed rays are rays.
+    fn forwards(&self) -> Forwards {
+        Forwards::Reversed
     }
 
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest> {

@@ -16,7 +16,7 @@
 //!
 //! Photons follow geodesics forwards, which needs a spacetime whose light rays can be
 //! reversed: static and time-symmetric (Minkowski, Schwarzschild, Ellis; Kerr is not), as the
-//! spacetime answers ([`spacetime::metric::Capabilities::is_time_symmetric`]).
+//! spacetime answers ([`spacetime::metric::Capabilities::forwards`]).
 //!
 //! Statistics: `rays` counts every geodesic segment traced (camera, background and photon
 //! paths); the fates are those of the camera paths, which end at their visible points
@@ -62,7 +62,7 @@ const DEFAULT_RADIUS_FRACTION: f64 = 0.01;
 
 /// Whether photons can be traced forwards in `spacetime` (see the module documentation).
 pub fn supports(spacetime: &Spacetime) -> bool {
-    spacetime.capabilities().is_time_symmetric()
+    spacetime.capabilities().forwards() == spacetime::metric::Forwards::Reversed
 }
 
 /// Photons an iteration of `scene`'s render: as set, or one per pixel.

@@ -20,7 +20,7 @@ mod dneg;
 
 pub use dneg::Dneg;
 
-use super::capabilities::{radial_frame, rest_on_chart, Capabilities, LocalFrame, NoRest, Tracers};
+use super::capabilities::{radial_frame, rest_on_chart, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region, WorldPoint};
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
@@ -379,8 +379,9 @@ impl<S: Shape> Capabilities for MorrisThorne<S> {
         Some(self.shape.throat())
     }
 
-    fn is_time_symmetric(&self) -> bool {
-        true
+    /// Static: reversed rays are rays.
+    fn forwards(&self) -> Forwards {
+        Forwards::Reversed
     }
 
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest> {
