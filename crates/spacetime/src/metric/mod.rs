@@ -9,6 +9,7 @@ mod builtin;
 mod capabilities;
 pub mod conformance;
 mod ellis;
+pub mod expression;
 mod kerr;
 mod kerr_newman;
 mod kerr_schild;
