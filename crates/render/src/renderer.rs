@@ -159,7 +159,7 @@ pub fn propagator(scene: &Scene) -> Propagator {
         .map(|b| b.min.abs().max(b.max.abs()).length())
         .chain([scene.camera.position.length()])
         .fold(0.0f64, f64::max);
-    Propagator::new(scene.spacetime, radius.max(1e-9), scene.settings.geodesic_rtol, scene.settings.intersection)
+    Propagator::new(scene.spacetime.clone(), radius.max(1e-9), scene.settings.geodesic_rtol, scene.settings.intersection)
         .with_axis(scene.axis)
 }
 

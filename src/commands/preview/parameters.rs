@@ -25,7 +25,8 @@ fn upper(value: f64) -> f64 {
 pub fn parameters(spacetime: &Spacetime, scene: &Spacetime) -> Vec<Parameter> {
     let scale = upper(scene.length_scale());
     match spacetime {
-        Spacetime::Minkowski(_) => Vec::new(),
+        // A written metric's parameters are folded into its compiled expressions.
+        Spacetime::Minkowski(_) | Spacetime::Written(_) => Vec::new(),
         Spacetime::Schwarzschild(s) => vec![Parameter { name: "mass", value: s.mass, min: 0.0, max: scale }],
         Spacetime::Kerr(k) => vec![
             Parameter { name: "mass", value: k.mass, min: 0.0, max: scale },
@@ -63,7 +64,7 @@ pub fn with_values(scene: &Spacetime, values: &BTreeMap<String, f64>) -> Result<
     }
     let get = |name: &str, default: f64| values.get(name).copied().unwrap_or(default);
     let result = match scene {
-        Spacetime::Minkowski(_) => Ok(*scene),
+        Spacetime::Minkowski(_) | Spacetime::Written(_) => Ok(scene.clone()),
         Spacetime::Schwarzschild(s) => Spacetime::schwarzschild(get("mass", s.mass)),
         Spacetime::Kerr(k) => Spacetime::kerr(get("mass", k.mass), get("spin", k.spin)),
         Spacetime::Ellis(e) => Spacetime::ellis(get("throat", e.throat)),

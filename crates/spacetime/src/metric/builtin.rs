@@ -1,11 +1,13 @@
-//! The closed set of built-in spacetimes, for scene files and the command line, validated on
-//! construction.
+//! The closed set of spacetimes of scene files and the command line — the built-in ones and a
+//! metric written in a scene file — validated on construction.
 
 use super::capabilities::{Capabilities, Tracers};
-use super::{Ellis, Kerr, KerrNewman, Metric, Minkowski, Region, ReissnerNordstrom, Schwarzschild};
+use super::{
+    Ellis, Kerr, KerrNewman, Metric, Minkowski, Region, ReissnerNordstrom, Schwarzschild, UserMetric, WrittenMetric,
+};
 
-/// A built-in spacetime.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A spacetime of a scene. Cloning is cheap: a written metric shares its compiled expressions.
+#[derive(Clone, Debug, PartialEq)]
 pub enum Spacetime {
     Minkowski(Minkowski),
     Schwarzschild(Schwarzschild),
@@ -13,6 +15,8 @@ pub enum Spacetime {
     Ellis(Ellis),
     ReissnerNordstrom(ReissnerNordstrom),
     KerrNewman(KerrNewman),
+    /// A metric written as expressions in a scene file.
+    Written(UserMetric<WrittenMetric>),
 }
 
 /// A parameter outside the spacetime's domain.
@@ -87,6 +91,7 @@ impl Spacetime {
             Spacetime::Ellis(_) => "ellis",
             Spacetime::ReissnerNordstrom(_) => "reissner-nordstrom",
             Spacetime::KerrNewman(_) => "kerr-newman",
+            Spacetime::Written(_) => "metric",
         }
     }
 
@@ -110,6 +115,7 @@ impl Spacetime {
             Spacetime::Ellis(m) => m,
             Spacetime::ReissnerNordstrom(m) => m,
             Spacetime::KerrNewman(m) => m,
+            Spacetime::Written(m) => m,
         }
     }
 
@@ -123,6 +129,7 @@ impl Spacetime {
             Spacetime::Ellis(m) => m.choose_tracer(tracers),
             Spacetime::ReissnerNordstrom(m) => m.choose_tracer(tracers),
             Spacetime::KerrNewman(m) => m.choose_tracer(tracers),
+            Spacetime::Written(m) => m.choose_tracer(tracers),
         }
     }
 

@@ -106,6 +106,25 @@ impl Function {
     }
 }
 
+/// The angle of the point `(x, y)`, `atan2(y, x)`, with derivatives exact to every order and finite
+/// everywhere but the origin: the arctangent of the smaller coordinate over the larger plus a
+/// constant of the quadrant. (`num_dual`'s own differentiates `atan(y/x)`, which is not finite
+/// where `x = 0`: on the plane `z = 0`, for the polar angle `atan2(ρ, z)`.)
+pub(crate) fn atan2<D: Scalar>(y: D, x: D) -> D {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let (yr, xr) = (y.re(), x.re());
+    if xr.abs() >= yr.abs() {
+        let base = (y / x).atan();
+        match (xr < 0.0, yr < 0.0) {
+            (false, _) => base,
+            (true, false) => base + PI,
+            (true, true) => base - PI,
+        }
+    } else {
+        -(x / y).atan() + if yr < 0.0 { -FRAC_PI_2 } else { FRAC_PI_2 }
+    }
+}
+
 /// Operators and functions of two operands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Binary {
@@ -125,7 +144,7 @@ impl Binary {
             Binary::Mul => a * b,
             Binary::Div => a / b,
             Binary::Pow => a.powd(b),
-            Binary::Atan2 => a.atan2(b),
+            Binary::Atan2 => atan2(a, b),
         }
     }
 }
@@ -283,7 +302,7 @@ impl Expression {
                     (Binary::Mul, x, Node::Num(c)) | (Binary::Mul, Node::Num(c), x) => Some((x, Op::MulC(*c))),
                     (Binary::Div, x, Node::Num(c)) => Some((x, Op::MulC(1.0 / c))),
                     (Binary::Div, Node::Num(c), x) => Some((x, Op::DivIntoC(*c))),
-                    (Binary::Pow, x, Node::Num(c)) if c.fract() == 0.0 && c.abs() <= 64.0 => {
+                    (Binary::Pow, x, Node::Num(c)) if c.fract() == 0.0 && c.abs() <= 1024.0 => {
                         Some((x, Op::Powi(*c as i32)))
                     }
                     (Binary::Pow, x, Node::Num(c)) => Some((x, Op::Powf(*c))),
@@ -647,6 +666,33 @@ mod tests {
         assert!(error(&deep).message.contains("nested more than"));
         let tall = "r*(".repeat(80) + "r" + &")".repeat(80);
         assert!(error(&tall).message.contains("too deeply nested"), "{:?}", error(&tall));
+    }
+
+    /// `atan2` in every quadrant and on the axes, with its derivative `(x dy − y dx)/(x² + y²)`.
+    #[test]
+    fn atan2_everywhere() {
+        for (y, x) in [
+            (1.0, 2.0),
+            (2.0, 1.0),
+            (2.0, -1.0),
+            (1.0, -2.0),
+            (-1.0, -2.0),
+            (-2.0, -1.0),
+            (-2.0, 1.0),
+            (0.0, 1.0),
+            (1.0, 0.0),
+            (0.0, -1.0),
+            (-1.0, 0.0),
+            (3.0, 3.0),
+        ] {
+            let a = atan2(Dual64::from_re(y).derivative(), Dual64::from_re(x));
+            let b = atan2(Dual64::from_re(y), Dual64::from_re(x).derivative());
+            assert!((a.re - f64::atan2(y, x)).abs() < 1e-15, "({y}, {x})");
+            assert!(
+                (a.eps - x / (x * x + y * y)).abs() < 1e-15 && (b.eps + y / (x * x + y * y)).abs() < 1e-15,
+                "({y}, {x})"
+            );
+        }
     }
 
     #[test]
