@@ -16,8 +16,8 @@
 //! Times are CPU times of the process (all threads, from `/proc/self/stat`; wall-clock time where
 //! that is not available), so other work on the machine does not skew the comparison.
 //!
-//! `cargo run --release --example equal_time -- [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP]`
-//! (default 240 180 1024 64, about two minutes on two cores; each reference half renders half of
+//! `cargo run --release --example equal_time -- [--scene PATH] [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP]`
+//! (default the black-hole room, 240 180 1024 64; about two minutes on two cores; each reference half renders half of
 //! REFERENCE_SPP). The ratio depends on the image size: the smaller it is, the more texture
 //! edges fall inside each pixel, noise both integrators share at equal samples (BENCHMARKS.md).
 
@@ -29,21 +29,29 @@ use std::sync::atomic::AtomicBool;
 const SCENE: &str = include_str!("../scenes/room-black-hole.toml");
 
 fn main() -> Result<(), String> {
-    let args: Vec<u32> = std::env::args()
-        .skip(1)
-        .map(|a| a.parse::<u32>().map_err(|e| format!("{a}: {e}")))
-        .collect::<Result<_, _>>()?;
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let (text, name) = match args.first().map(String::as_str) {
+        Some("--scene") if args.len() > 1 => {
+            let path = args.remove(1);
+            args.remove(0);
+            (std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?, path)
+        }
+        _ => (SCENE.to_string(), "scenes/room-black-hole.toml".to_string()),
+    };
+    let args: Vec<u32> =
+        args.iter().map(|a| a.parse::<u32>().map_err(|e| format!("{a}: {e}"))).collect::<Result<_, _>>()?;
     let [width, height, reference_spp, budget] = match args.as_slice() {
         [] => [240, 180, 1024, 64],
         &[w, h, r, b] if w > 0 && h > 0 && r > 0 && b > 0 => [w, h, r, b],
-        _ => return Err("usage: equal_time [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP], all positive".into()),
+        _ => {
+            return Err("usage: equal_time [--scene PATH] [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP], all positive".into())
+        }
     };
-    let mut scene =
-        scene::parse(SCENE, "scenes/room-black-hole.toml", std::path::Path::new(".")).map_err(|e| e.to_string())?;
+    let mut scene = scene::parse(&text, &name, std::path::Path::new(".")).map_err(|e| e.to_string())?;
     scene.settings.width = width;
     scene.settings.height = height;
     let threads = rayon::current_num_threads();
-    println!("room-black-hole at {width}×{height}, depth {}, {threads} threads", scene.settings.max_depth);
+    println!("{name} at {width}×{height}, depth {}, {threads} threads", scene.settings.max_depth);
 
     let half = (reference_spp / 2).max(1);
     let (reference_a, seconds_a) = run(&scene, IntegratorKind::BruteForce, half, 1000);

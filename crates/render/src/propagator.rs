@@ -19,6 +19,10 @@
 //! the static observer's orthonormal frame (the normal observer's inside a Kerr ergosphere),
 //! which in curved space differs from the world coordinate directions by the metric.
 
+mod aim;
+
+pub use aim::Aimed;
+
 use crate::crossing::{crossing, Meeting};
 use crate::geometry::{Ray, Vec3};
 use crate::settings::Intersection;

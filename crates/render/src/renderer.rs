@@ -22,7 +22,7 @@ use crate::integrator::{photon, PathIntegrator, PathStats};
 use crate::propagator::Propagator;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
-use crate::settings::IntegratorKind;
+use crate::settings::{Connector, IntegratorKind};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Mutex, OnceLock};
@@ -159,8 +159,17 @@ pub fn propagator(scene: &Scene) -> Propagator {
         .map(|b| b.min.abs().max(b.max.abs()).length())
         .chain([scene.camera.position.length()])
         .fold(0.0f64, f64::max);
-    Propagator::new(scene.spacetime.clone(), radius.max(1e-9), scene.settings.geodesic_rtol, scene.settings.intersection)
-        .with_axis(scene.axis)
+    let propagator = Propagator::new(
+        scene.spacetime.clone(),
+        radius.max(1e-9),
+        scene.settings.geodesic_rtol,
+        scene.settings.intersection,
+    )
+    .with_axis(scene.axis);
+    match scene.settings.connector {
+        Connector::Auto => propagator,
+        Connector::Aimed => propagator.with_generic_connector(),
+    }
 }
 
 /// Renders `scene` to its settings' samples per pixel on the current rayon pool. `cancel` stops

@@ -5,9 +5,9 @@ use crate::film::{Filter, ToneMap};
 /// Which light-transport algorithm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IntegratorKind {
-    /// Unidirectional path tracing with next-event estimation and MIS wherever light can be
-    /// connected to exactly (flat space by straight rays, Schwarzschild by geodesics); BSDF
-    /// sampling alone elsewhere (Kerr, the Ellis wormhole, the poster's intersection mode).
+    /// Unidirectional path tracing with next-event estimation and MIS: lights are joined to
+    /// shading points by straight rays in flat space, by geodesics in curved spacetime
+    /// ([`Connector`]); by BSDF sampling alone in the poster's intersection mode.
     Path,
     /// Path tracing that only finds lights by hitting them: the unbiased reference.
     BruteForce,
@@ -16,6 +16,17 @@ pub enum IntegratorKind {
     /// small or distant lights (e.g. through a wormhole) that camera paths rarely hit. Needs a
     /// time-symmetric spacetime (not Kerr), since photons follow geodesics forwards.
     Photon,
+}
+
+/// How the path integrator joins light points to shading points in curved spacetime.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Connector {
+    /// The spacetime's own connector where it has one (Schwarzschild), else rays aimed by
+    /// Newton's method.
+    Auto,
+    /// Rays aimed by Newton's method in every curved spacetime: to check a spacetime's own
+    /// connector against the generic one.
+    Aimed,
 }
 
 /// Settings of the photon integrator ([`IntegratorKind::Photon`]).
@@ -60,6 +71,7 @@ pub struct RenderSettings {
     pub integrator: IntegratorKind,
     pub photon: PhotonSettings,
     pub intersection: Intersection,
+    pub connector: Connector,
     pub filter: Filter,
     pub tonemap: ToneMap,
     /// Relative tolerance of the adaptive geodesic integrator. The default, 1e-7, is derived from
@@ -80,6 +92,7 @@ impl Default for RenderSettings {
             integrator: IntegratorKind::Path,
             photon: PhotonSettings::default(),
             intersection: Intersection::Chord,
+            connector: Connector::Auto,
             filter: Filter::default(),
             tonemap: ToneMap::default(),
             geodesic_rtol: 1e-7,

@@ -155,6 +155,9 @@ fn cameras_where_nothing_can_stay_at_rest() {
     assert!(scene::parse(&format!("{kerr}{}", camera("[0, 1.9, 0]")), "ok.toml", Path::new(".")).is_ok());
     let wormhole = "[spacetime]\ntype = \"ellis\"\nthroat = 1\n";
     check(&format!("{wormhole}{}", camera("[0, 0, 0.99]")), 5, "camera.position", &["throat"]);
+    let interstellar = "[spacetime]\ntype = \"wormhole\"\nthroat = 1\nlength = 0.01\nlensing_width = 0.05\n";
+    check(&format!("{interstellar}{}", camera("[0, 0.99, 0]")), 7, "camera.position", &["throat"]);
+    assert!(scene::parse(&format!("{interstellar}{}", camera("[0, 1.01, 0]")), "ok.toml", Path::new(".")).is_ok());
 }
 
 #[test]
@@ -173,6 +176,12 @@ fn bad_spacetime_parameters() {
     check(&text, 4, "spacetime.spin", &["|spin| must be ≤ mass = 1, got 1.1"]);
     let text = format!("[spacetime]\ntype = \"ellis\"\nthroat = 0\n{CAMERA}");
     check(&text, 3, "spacetime.throat", &["> 0"]);
+    let text = format!("[spacetime]\ntype = \"wormhole\"\nthroat = 1\nlength = -1\nlensing_width = 0.1\n{CAMERA}");
+    check(&text, 4, "spacetime.length", &["≥ 0"]);
+    let text = format!("[spacetime]\ntype = \"wormhole\"\nthroat = 1\nlensing_width = 0\n{CAMERA}");
+    check(&text, 4, "spacetime.lensing_width", &["> 0"]);
+    let text = format!("[spacetime]\ntype = \"wormhole\"\nthroat = 1\n{CAMERA}");
+    check(&text, 1, "spacetime.lensing_width", &["missing"]);
     let text = format!("[spacetime]\ntype = \"schwarzschild\"\nmass = 1\nspin = 0.5\n{CAMERA}");
     check(&text, 4, "spacetime.spin", &["unknown field"]);
     // A lower region only exists in a wormhole.

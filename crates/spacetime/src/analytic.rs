@@ -3,6 +3,7 @@
 //! Bending angles are written as integrals whose flat-space part is subtracted analytically, so
 //! that tiny weak-field angles keep full relative precision, and evaluated by adaptive quadrature.
 
+use crate::metric::Shape;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Tanh–sinh (double exponential) quadrature of `f` on `[a, b]` to relative tolerance `rel_tol`
@@ -149,6 +150,43 @@ pub fn ellis_deflection(throat: f64, b: f64) -> f64 {
     }
 }
 
+/// Azimuth swept by a ray of impact parameter `b` through a Morris–Thorne wormhole of any
+/// [`Shape`] (`Φ = 0`), minus π: `2∫ b dl / (r √(r² − b²)) − π`, from the turning point
+/// `r(l_t) = b` outwards for `b > ρ` (the ray turns back), over all `l` for `b < ρ` (it goes
+/// through).
+///
+/// For `b > ρ`, with `r = b/sin θ` the flat part is `π` exactly and
+/// `α = 2∫₀^{π/2} (1/r_l − 1) dθ`, `r_l = dr/dl` at `r`: smooth, of the size of the bending, and
+/// finite at the turning point where `r_l > 0`. For `b < ρ`, `2∫₀^∞` splits into the part with
+/// `r = ρ` (`|l| ≤ a`, where [`Shape::proper_distance`]`(ρ) = a`) and `l = a + ρ tan θ` beyond.
+pub fn wormhole_deflection<S: Shape>(shape: &S, b: f64) -> f64 {
+    let throat = shape.throat();
+    if b > throat {
+        let integrand = |theta: f64| {
+            let sin = theta.sin();
+            if sin <= 0.0 {
+                return 0.0;
+            }
+            let slope = shape.radius(shape.proper_distance(b / sin)).slope;
+            (1.0 - slope) / slope
+        };
+        2.0 * integrate(&integrand, 0.0, FRAC_PI_2, 1e-13)
+    } else {
+        let a = shape.proper_distance(throat);
+        let cylinder = a * b / (throat * ((throat - b) * (throat + b)).sqrt());
+        let integrand = |theta: f64| {
+            let (sin, cos) = theta.sin_cos();
+            let r = shape.radius(a + throat * sin / cos).r;
+            let root = ((r - b) * (r + b)).sqrt();
+            if cos <= 0.0 || !root.is_finite() {
+                return b / throat;
+            }
+            b * throat / (cos * cos * r * root)
+        };
+        2.0 * (cylinder + integrate(&integrand, 0.0, FRAC_PI_2, 1e-13)) - PI
+    }
+}
+
 /// Weak-field Schwarzschild bending, `4M/b + 15πM²/(4b²)`.
 pub fn schwarzschild_deflection_weak(mass: f64, b: f64) -> f64 {
     4.0 * mass / b + 15.0 * PI * mass * mass / (4.0 * b * b)
@@ -185,13 +223,10 @@ pub fn kerr_equatorial_critical_impacts(mass: f64, spin: f64) -> (f64, f64) {
     }
 }
 
-/// Impact parameters `ξ = L_z/E` of the two circular equatorial photon orbits of a Kerr–Newman
-/// hole, `(prograde, retrograde)` signed as [`kerr_equatorial_critical_impacts`]'s. The orbits'
-/// radii are the roots outside the horizon of `r² − 3Mr + 2Q² ± 2a√(Mr − Q²) = 0` (+ prograde),
-/// found by bisection on `[r₊, 4M]`, and `ξ = (r² + a² − 4rΔ/Δ')/a`, `Δ = r² − 2Mr + a² + Q²`
-/// (from `R(r) = R'(r) = 0` of the radial potential `R = (r² + a² − aξ)² − Δ(ξ − a)²`; Kerr's
-/// formula at `Q = 0`).
-pub fn kerr_newman_equatorial_critical_impacts(mass: f64, spin: f64, charge: f64) -> (f64, f64) {
+/// Radii of the two circular equatorial photon orbits of a Kerr–Newman hole of spin `|a|`,
+/// `(prograde, retrograde)`: the roots outside the horizon of
+/// `r² − 3Mr + 2Q² ± 2a√(Mr − Q²) = 0` (+ prograde), found by bisection on `[r₊, 4M]`.
+fn kerr_newman_equatorial_orbit_radii(mass: f64, spin: f64, charge: f64) -> (f64, f64) {
     let (m, a, q2) = (mass, spin.abs(), charge * charge);
     let horizon = m + (m * m - a * a - q2).sqrt();
     let radius = |sign: f64| {
@@ -207,16 +242,57 @@ pub fn kerr_newman_equatorial_critical_impacts(mass: f64, spin: f64, charge: f64
         }
         0.5 * (lo + hi)
     };
-    let xi = |r: f64| {
-        let delta = r * r - 2.0 * m * r + a * a + q2;
-        (r * r + a * a - 2.0 * r * delta / (r - m)) / a
-    };
-    let (pro, retro) = (xi(radius(1.0)), xi(radius(-1.0)));
+    (radius(1.0), radius(-1.0))
+}
+
+/// The constants of motion `(ξ, η) = (L_z/E, Carter's Q/E²)` of the spherical photon orbit of
+/// radius `r` around a Kerr–Newman hole of spin `a ≠ 0`: `R(r) = R'(r) = 0` for the radial
+/// potential `R = (r² + a² − aξ)² − Δ(η + (ξ − a)²)`, `Δ = r² − 2Mr + a² + Q²`, give
+/// `aξ = r² + a² − 4rΔ/Δ'` and `η + (ξ − a)² = 16r²Δ/Δ'²` (Bardeen 1973 at `Q = 0`;
+/// de Vries 2000, Class. Quantum Grav. 17, 123, with charge).
+fn kerr_newman_spherical_orbit(mass: f64, spin: f64, charge: f64, r: f64) -> (f64, f64) {
+    let delta = r * r - 2.0 * mass * r + spin * spin + charge * charge;
+    let d_delta = 2.0 * (r - mass);
+    let xi = (r * r + spin * spin - 4.0 * r * delta / d_delta) / spin;
+    let eta = 16.0 * r * r * delta / (d_delta * d_delta) - (xi - spin).powi(2);
+    (xi, eta)
+}
+
+/// Impact parameters `ξ = L_z/E` of the two circular equatorial photon orbits of a Kerr–Newman
+/// hole, `(prograde, retrograde)` signed as [`kerr_equatorial_critical_impacts`]'s
+/// ([`kerr_newman_spherical_orbit`] at the radii of `kerr_newman_equatorial_orbit_radii`; Kerr's
+/// formula at `Q = 0`).
+pub fn kerr_newman_equatorial_critical_impacts(mass: f64, spin: f64, charge: f64) -> (f64, f64) {
+    let (pro, retro) = kerr_newman_equatorial_orbit_radii(mass, spin, charge);
+    let xi = |r: f64| kerr_newman_spherical_orbit(mass, spin.abs(), charge, r).0;
+    let (pro, retro) = (xi(pro), xi(retro));
     if spin > 0.0 {
         (pro, retro)
     } else {
         (-pro, -retro)
     }
+}
+
+/// The shadow's boundary seen by a distant observer at inclination `i` (radians from the spin
+/// axis) of a Kerr–Newman hole with `spin > 0`: the generalised Bardeen curve, `n` points
+/// `(α, β)` of its upper half (`β ≥ 0`; the lower half is its mirror) in order of the orbit's
+/// radius, `α = −ξ/sin i`, `β = √(η + a² cos² i − ξ² cot² i)` for the spherical photon orbits
+/// ([`kerr_newman_spherical_orbit`]) between the equatorial ones (clustered at both), where
+/// `β² ≥ 0`. `α > 0` is the
+/// side where the hole's surface recedes from the observer (retrograde orbits).
+pub fn kerr_newman_shadow(mass: f64, spin: f64, charge: f64, inclination: f64, n: usize) -> Vec<(f64, f64)> {
+    let (pro, retro) = kerr_newman_equatorial_orbit_radii(mass, spin, charge);
+    let (sin, cos) = inclination.sin_cos();
+    (0..n)
+        .filter_map(|k| {
+            // Clustered at the ends, where β rises like the square root of the radius.
+            let t = 0.5 * (1.0 - (PI * k as f64 / (n - 1) as f64).cos());
+            let r = pro + (retro - pro) * t;
+            let (xi, eta) = kerr_newman_spherical_orbit(mass, spin, charge, r);
+            let beta2 = eta + (spin * cos).powi(2) - (xi * cos / sin).powi(2);
+            (beta2 >= 0.0).then(|| (-xi / sin, beta2.sqrt()))
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -287,6 +363,21 @@ mod tests {
         assert!((p - 2.845).abs() < 1e-3 && (r + 6.833).abs() < 1e-3, "{p} {r}");
         let (p, r) = kerr_equatorial_critical_impacts(1.0, 1e-7);
         assert!((p - 27f64.sqrt()).abs() < 1e-6 && (r + 27f64.sqrt()).abs() < 1e-6);
+    }
+
+    /// Seen from the equator without spin the shadow is the circle of radius `b_c` (here
+    /// Reissner–Nordström's, `Q = 0.6 M`, spin 10⁻⁶ M), and a Kerr hole of spin 0.9 M seen edge-on spans
+    /// Bardeen's `α ∈ [−2.85, 6.83]`.
+    #[test]
+    fn kerr_newman_shadow_reduces_to_known_curves() {
+        let b_c = reissner_nordstrom_critical_impact(1.0, 0.6);
+        for (alpha, beta) in kerr_newman_shadow(1.0, 1e-6, 0.6, FRAC_PI_2, 200) {
+            assert!((alpha.hypot(beta) - b_c).abs() < 1e-5, "({alpha}, {beta}) off the circle {b_c}");
+        }
+        let curve = kerr_newman_shadow(1.0, 0.9, 0.0, FRAC_PI_2, 2000);
+        let (first, last) = (curve[0], curve[curve.len() - 1]);
+        assert!((first.0 + 2.845).abs() < 1e-3 && (last.0 - 6.833).abs() < 1e-3, "{first:?} … {last:?}");
+        assert!(first.1 < 0.02 && last.1 < 0.02, "{first:?} … {last:?}");
     }
 
     /// Without charge the Kerr–Newman orbits are Kerr's closed forms.

@@ -18,7 +18,7 @@ pub mod tensor;
 
 pub use geodesic::{Fate, Integrator, State, Trace, TraceSettings, Visit};
 pub use metric::{
-    Ellis, Kerr, KerrNewman, Metric, MetricFunction, Minkowski, Region, ReissnerNordstrom, Schwarzschild, Spacetime,
-    UserMetric,
+    Dneg, Ellis, Kerr, KerrNewman, Metric, MetricFunction, Minkowski, MorrisThorne, Region, ReissnerNordstrom,
+    Schwarzschild, Spacetime, UserMetric, Wormhole,
 };
 pub use observer::Tetrad;

@@ -29,6 +29,10 @@ fn examples() -> Vec<Spacetime> {
         Spacetime::reissner_nordstrom(1.0, 1.0).unwrap(),
         Spacetime::kerr_newman(1.0, 0.6, 0.5).unwrap(),
         Spacetime::kerr_newman(1.0, -0.8, 0.6).unwrap(),
+        // Interstellar's proportions (a = 0.005 ρ, 𝒲 = 0.05 ρ), a long one, and one without a cylinder.
+        Spacetime::wormhole(1.0, 0.01, 0.05).unwrap(),
+        Spacetime::wormhole(1.0, 1.0, 1.0).unwrap(),
+        Spacetime::wormhole(1.0, 0.0, 0.5).unwrap(),
         written(
             Coordinates::Spherical,
             &[
@@ -64,6 +68,7 @@ fn examples() -> Vec<Spacetime> {
             | Spacetime::Ellis(_)
             | Spacetime::ReissnerNordstrom(_)
             | Spacetime::KerrNewman(_)
+            | Spacetime::Wormhole(_)
             | Spacetime::Written(_) => {}
         }
     }
@@ -109,6 +114,7 @@ fn every_metric_answers_the_renderer_consistently() {
                     Spacetime::Ellis(m) => check_capabilities(m, region, p),
                     Spacetime::ReissnerNordstrom(m) => check_capabilities(m, region, p),
                     Spacetime::KerrNewman(m) => check_capabilities(m, region, p),
+                    Spacetime::Wormhole(m) => check_capabilities(m, region, p),
                     Spacetime::Written(m) => check_capabilities(m, region, p),
                 }
             }
@@ -146,6 +152,14 @@ fn where_nothing_can_stay_at_rest() {
         assert!(matches!(wormhole.capabilities().rest(region, [0.99, 0.0, 0.0]), Err(NoRest::OffChart { .. })));
         assert_eq!(wormhole.capabilities().rest(region, [1.01, 0.0, 0.0]), Ok(()));
     }
+    // Interstellar's: world radius ρ is the cylinder's mouth, within it is off the chart.
+    let interstellar = Spacetime::wormhole(1.0, 0.01, 0.05).unwrap();
+    for region in [Region::Upper, Region::Lower] {
+        let rest = |p: [f64; 3]| interstellar.capabilities().rest(region, p);
+        assert!(matches!(rest([0.0, 0.999, 0.0]), Err(NoRest::OffChart { .. })));
+        assert_eq!(rest([0.0, 1.0, 0.0]), Ok(()));
+        assert_eq!(rest([0.0, 0.0, 1.001]), Ok(()));
+    }
     assert_eq!(hole.capabilities().rest(Region::Lower, [5.0, 0.0, 0.0]), Err(NoRest::NoSuchRegion));
 }
 
@@ -160,4 +174,5 @@ fn tracers_fit_the_metrics() {
     assert_eq!(chosen_tracer(&spacetime::ReissnerNordstrom::new(1.0, 0.9)), "in-plane");
     assert_eq!(chosen_tracer(&spacetime::ReissnerNordstrom::new(0.0, 0.0)), "straight");
     assert_eq!(chosen_tracer(&spacetime::KerrNewman::new(1.0, 0.6, 0.5)), "4-D");
+    assert_eq!(chosen_tracer(&spacetime::Wormhole::new(spacetime::Dneg::new(1.0, 0.01, 0.05))), "in-plane");
 }

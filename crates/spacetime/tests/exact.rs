@@ -196,3 +196,53 @@ fn rk4_is_available_and_converges() {
     let (ec, ef) = ((coarse.deflection_rad - exact).abs(), (fine.deflection_rad - exact).abs());
     assert!(ef < 1e-5 && ef < ec / 8.0, "RK4 errors {ec:e} → {ef:e}");
 }
+
+/// Interstellar's proportions (James et al. 2015: `a = 0.005 ρ`, `𝒲 = 0.05 ρ`), a long
+/// wormhole with a wide lens, and one without a cylinder.
+fn dneg_wormholes() -> [spacetime::Dneg; 3] {
+    [spacetime::Dneg::new(1.0, 0.01, 0.05), spacetime::Dneg::new(2.0, 2.0, 1.5), spacetime::Dneg::new(1.0, 0.0, 0.5)]
+}
+
+/// Tolerance of the wormhole tests: their errors are proportional to it, and at the shared
+/// 10⁻¹⁰ rays that graze a mouth (`b = 1.001 ρ`), whose bending the orbit amplifies, are off by
+/// up to 4·10⁻⁷ (measured; 5·10⁻⁹ at 10⁻¹²).
+const WORMHOLE: Integrator = Integrator::Adaptive { rtol: 1e-12 };
+
+/// The tracer's bending past the *Interstellar* wormhole matches the quadrature of its integral
+/// ([`analytic::wormhole_deflection`]) to 10⁻⁷, from rays that graze the mouth (`b = 1.001 ρ`,
+/// turning just outside the kink of `r(l)` at `|l| = a`, where `r''` jumps: the step-size
+/// control resolves it) to the weak field, in the split tracer's range (`b > 64 ρ`) too.
+#[test]
+fn interstellar_wormhole_bending_matches_the_exact_integral() {
+    for shape in dneg_wormholes() {
+        let (rho, length, width) = (shape.throat, shape.length, shape.lensing_width);
+        let wormhole = Spacetime::wormhole(rho, length, width).unwrap();
+        for factor in [1.001, 1.01, 1.1, 1.5, 3.0, 10.0, 100.0, 1e3, 1e4] {
+            let b = factor * rho;
+            let s = scatter(&wormhole, b, 0.3, WORMHOLE);
+            assert!(matches!(s.fate, Fate::Escaped { .. }), "{shape:?}, b = {b}: {:?}", s.fate);
+            let exact = analytic::wormhole_deflection(&shape, b);
+            let rel = (s.deflection_rad - exact).abs() / exact.abs();
+            assert!(rel < 1e-7, "{shape:?}, b = {b}: {} vs exact {exact} ({rel:e})", s.deflection_rad);
+            // Measured: |H| ≤ 3·10⁻⁸ up to b = 100 ρ, rising to 8·10⁻⁶ at 10⁴ ρ.
+            assert!(s.max_abs_hamiltonian < 1e-5, "{shape:?}, b = {b}: |H| = {:e}", s.max_abs_hamiltonian);
+        }
+    }
+}
+
+/// Rays inside the throat go through, across both kinks and the cylinder, and sweep the
+/// quadrature's azimuth to 10⁻⁷.
+#[test]
+fn interstellar_wormhole_rays_inside_the_throat_traverse_and_sweep_the_exact_azimuth() {
+    for shape in dneg_wormholes() {
+        let wormhole = Spacetime::wormhole(shape.throat, shape.length, shape.lensing_width).unwrap();
+        for factor in [0.01, 0.3, 0.8, 0.99] {
+            let b = factor * shape.throat;
+            let s = scatter(&wormhole, b, 0.7, WORMHOLE);
+            assert!(matches!(s.fate, Fate::Traversed { .. }), "{shape:?}, b = {b}: {:?}", s.fate);
+            let swept = s.deflection_rad + std::f64::consts::PI;
+            let exact = analytic::wormhole_deflection(&shape, b) + std::f64::consts::PI;
+            assert!(((swept - exact) / exact).abs() < 1e-7, "{shape:?}, b = {b}: swept {swept} vs {exact}");
+        }
+    }
+}

@@ -4,7 +4,7 @@
 //! [`World`]: crate::world::World
 //! [`Propagator`]: crate::propagator::Propagator
 
-mod geodesic_light;
+mod light;
 mod path;
 pub mod photon;
 mod stats;

@@ -103,7 +103,7 @@ pub(crate) fn scene<'a>(
             let lower = n.table(&["sky"])?;
             if !b.two_regions {
                 return Err(lower.err(format!(
-                    "only a wormhole (type = \"ellis\") has a lower region; this spacetime ({}) has one",
+                    "only a wormhole (type = \"ellis\" or \"wormhole\") has a lower region; this spacetime ({}) has one",
                     spacetime.name()
                 )));
             }
@@ -152,6 +152,7 @@ const SPACETIMES: &[(&str, &[&str], SpacetimeReader)] = &[
     ("ellis", &["throat"], ellis),
     ("reissner-nordstrom", &["mass", "charge"], reissner_nordstrom),
     ("kerr-newman", &["mass", "spin", "charge", "axis"], kerr_newman),
+    ("wormhole", &["throat", "length", "lensing_width"], wormhole),
 ];
 
 /// `[spacetime]`: the metric, validated by the physics crate, and its symmetry axis in the world
@@ -217,11 +218,29 @@ fn kerr_newman(t: &Table<'_>) -> Result<Spacetime> {
 }
 
 fn ellis(t: &Table<'_>) -> Result<Spacetime> {
-    let throat = t.req("throat", |n| n.f64())?;
-    if !(throat > 0.0) {
-        return Err(t.loc("throat").err(format!("must be > 0, got {}", num(throat))));
+    checked(t, "throat", Spacetime::ellis(positive(t, "throat")?))
+}
+
+/// A positive length `key`, required.
+fn positive(t: &Table<'_>, key: &str) -> Result<f64> {
+    let v = t.req(key, |n| n.f64())?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(t.loc(key).err(format!("must be > 0, got {}", num(v))))
     }
-    checked(t, "throat", Spacetime::ellis(throat))
+}
+
+/// The *Interstellar* wormhole: `throat` and `lensing_width` required and > 0, `length` (of the
+/// cylindrical interior) ≥ 0, default 0.
+fn wormhole(t: &Table<'_>) -> Result<Spacetime> {
+    let throat = positive(t, "throat")?;
+    let length = t.or("length", 0.0, |n| n.f64())?;
+    if !(length >= 0.0) {
+        return Err(t.loc("length").err(format!("must be ≥ 0, got {}", num(length))));
+    }
+    let width = positive(t, "lensing_width")?;
+    checked(t, "lensing_width", Spacetime::wormhole(throat, length, width))
 }
 
 impl Builder<'_> {
@@ -237,7 +256,7 @@ impl Builder<'_> {
         };
         let region = [Region::Upper, Region::Lower][n.keyword("region", &["upper", "lower"])?];
         if region == Region::Lower && !self.two_regions {
-            return Err(n.err("only a wormhole (spacetime type = \"ellis\") has a lower region"));
+            return Err(n.err("only a wormhole (spacetime type = \"ellis\" or \"wormhole\") has a lower region"));
         }
         Ok(region)
     }

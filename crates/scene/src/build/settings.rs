@@ -3,7 +3,7 @@
 use crate::reader::{num, Node, Result, Table};
 use render::film::{Curve, Filter, FilterError, ToneMap, MITCHELL_RECOMMENDED_B_C};
 use render::integrator::photon;
-use render::settings::{IntegratorKind, Intersection, PhotonSettings, RenderSettings};
+use render::settings::{Connector, IntegratorKind, Intersection, PhotonSettings, RenderSettings};
 use spacetime::Spacetime;
 
 pub(super) const RENDER_KEYS: &[&str] = &[
@@ -19,6 +19,7 @@ pub(super) const RENDER_KEYS: &[&str] = &[
     "poster_step",
     "poster_max_iterations",
     "geodesic_rtol",
+    "connector",
     "exposure",
     "tonemap",
     "filter",
@@ -94,6 +95,10 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
         integrator,
         photon,
         intersection,
+        connector: match t.get("connector") {
+            Some(n) => [Connector::Auto, Connector::Aimed][n.keyword("connector", &["auto", "aimed"])?],
+            None => d.connector,
+        },
         filter: match t.get("filter") {
             Some(n) => filter(&n)?,
             None => d.filter,

@@ -2,61 +2,99 @@
 //! with RK4 or Dormand–Prince 5(4), a step cap proportional to the distance from the centre, and
 //! the ray's fate decided from the metric's horizon, regions and escape radius (and, for metrics
 //! that say so, from a collapsing step: [`Metric::collapse_captures`]).
+//!
+//! The tracer integrates a [`Flow`]: the ray alone ([`Ray`], the state `(x, p)`), or the ray with
+//! fields riding along it ([`super::bundle::Bundle`]), whose first eight components are the ray.
+//! Steps are controlled, capped and ended by the ray alone, so a ray traced with its bundle takes
+//! the steps it takes without.
 
 use super::{dopri5, Failure, Fate, Integrator, Interpolant, State, Trace, TraceSettings, Visit};
 use crate::metric::{Metric, Region};
 use crate::tensor::{Covector4, Vector4};
 
-type Y = [f64; 8];
+/// A system of `N` first-order equations whose first eight components are a ray `(x^μ, p_μ)`
+/// obeying Hamilton's equations.
+pub trait Flow<const N: usize> {
+    /// `dy/dλ` at `y`.
+    fn rhs<M: Metric + ?Sized>(metric: &M, y: &[f64; N]) -> [f64; N];
+}
 
+/// The ray alone.
+#[derive(Clone, Copy, Debug)]
+pub struct Ray;
+
+impl Flow<8> for Ray {
+    #[inline]
+    fn rhs<M: Metric + ?Sized>(metric: &M, y: &[f64; 8]) -> [f64; 8] {
+        let (dx, dp) = metric.geodesic_rhs(&[y[0], y[1], y[2], y[3]], &[y[4], y[5], y[6], y[7]]);
+        [dx[0], dx[1], dx[2], dx[3], dp[0], dp[1], dp[2], dp[3]]
+    }
+}
+
+/// The ray's state packed as a flow's first eight components.
 #[inline]
-fn pack(s: &State) -> Y {
+pub(super) fn pack(s: &State) -> [f64; 8] {
     [s.x[0], s.x[1], s.x[2], s.x[3], s.p[0], s.p[1], s.p[2], s.p[3]]
 }
 
+/// The ray's state from a flow's first eight components.
 #[inline]
-fn unpack(y: &Y) -> State {
+pub(super) fn unpack<const N: usize>(y: &[f64; N]) -> State {
     State { x: [y[0], y[1], y[2], y[3]], p: [y[4], y[5], y[6], y[7]] }
 }
 
 /// One accepted step, with dense output for the state anywhere inside it.
 #[derive(Clone, Copy, Debug)]
-pub struct HamiltonianStep {
+pub struct HamiltonianStep<const N: usize = 8> {
     pub start: State,
     pub end: State,
     /// Affine parameter length of the step.
     pub h: f64,
-    interpolant: Interpolant<8>,
+    interpolant: Interpolant<N>,
 }
 
-impl HamiltonianStep {
-    /// State at fraction `θ ∈ [0, 1]` of the step.
+impl<const N: usize> HamiltonianStep<N> {
+    /// Ray state at fraction `θ ∈ [0, 1]` of the step.
     pub fn at(&self, theta: f64) -> State {
         unpack(&self.interpolant.dense(theta))
     }
+
+    /// The whole flow's state at fraction `θ` of the step.
+    pub fn flow_at(&self, theta: f64) -> [f64; N] {
+        self.interpolant.dense(theta)
+    }
 }
 
-/// Integrates one ray step by step.
-pub struct HamiltonianTracer<'m, M: Metric + ?Sized> {
+/// Integrates one ray (with whatever its flow carries) step by step.
+pub struct HamiltonianTracer<'m, M: Metric + ?Sized, const N: usize = 8, F: Flow<N> = Ray> {
     metric: &'m M,
     settings: TraceSettings,
-    y: Y,
-    dy: Y,
+    y: [f64; N],
+    dy: [f64; N],
     h: f64,
     lambda: f64,
     steps: u32,
+    flow: std::marker::PhantomData<F>,
 }
 
 impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
+    /// The tracer of the ray from `start`.
     pub fn new(metric: &'m M, start: State, settings: TraceSettings) -> Self {
-        let y = pack(&start);
+        Self::of_flow(metric, pack(&start), settings)
+    }
+}
+
+impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M, N, F> {
+    /// The tracer of flow `F` from `y` (its first eight components the ray's start).
+    pub fn of_flow(metric: &'m M, y: [f64; N], settings: TraceSettings) -> Self {
         let dy = Self::rhs(metric, &y);
         let h0 = match settings.integrator {
             Integrator::Rk4 { step } => step,
             // A cautious first step; error control grows it within a few steps.
             Integrator::Adaptive { .. } => f64::INFINITY,
         };
-        let mut tracer = Self { metric, settings, y, dy, h: h0, lambda: 0.0, steps: 0 };
+        let flow = std::marker::PhantomData;
+        let mut tracer = Self { metric, settings, y, dy, h: h0, lambda: 0.0, steps: 0, flow };
         if matches!(settings.integrator, Integrator::Adaptive { .. }) {
             tracer.h = 0.01 * tracer.step_cap();
         }
@@ -64,9 +102,8 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
     }
 
     #[inline]
-    fn rhs(metric: &M, y: &Y) -> Y {
-        let (dx, dp) = metric.geodesic_rhs(&[y[0], y[1], y[2], y[3]], &[y[4], y[5], y[6], y[7]]);
-        [dx[0], dx[1], dx[2], dx[3], dp[0], dp[1], dp[2], dp[3]]
+    fn rhs(metric: &M, y: &[f64; N]) -> [f64; N] {
+        F::rhs(metric, y)
     }
 
     pub fn state(&self) -> State {
@@ -97,10 +134,10 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
 
     /// Scaled error norm of an attempt: rotation-invariant blocks for position, time and
     /// momentum, each relative to its own size.
-    fn error_norm(&self, y0: &Y, y1: &Y, error: &Y, rtol: f64) -> f64 {
+    fn error_norm(&self, y0: &[f64; N], y1: &[f64; N], error: &[f64; N], rtol: f64) -> f64 {
         let scale = self.metric.length_scale();
-        let n3 = |v: &Y, i: usize| (v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]).sqrt();
-        let n4 = |v: &Y| (v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]).sqrt();
+        let n3 = |v: &[f64; N], i: usize| (v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]).sqrt();
+        let n4 = |v: &[f64; N]| (v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]).sqrt();
         let pos = n3(error, 1) / (rtol * (scale + n3(y0, 1).max(n3(y1, 1))));
         let time = error[0].abs() / (rtol * (scale + y0[0].abs().max(y1[0].abs())));
         let mom = n4(error) / (rtol * n4(y0).max(n4(y1)));
@@ -108,11 +145,11 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
     }
 
     /// Advances by one accepted step, no longer than `h_limit`.
-    pub fn step(&mut self, h_limit: f64) -> Result<HamiltonianStep, Failure> {
+    pub fn step(&mut self, h_limit: f64) -> Result<HamiltonianStep<N>, Failure> {
         if self.steps >= self.settings.max_steps {
             return Err(Failure::OutOfSteps);
         }
-        let f = |_t: f64, y: &Y| Self::rhs(self.metric, y);
+        let f = |_t: f64, y: &[f64; N]| Self::rhs(self.metric, y);
         let cap = self.step_cap().min(h_limit);
         let mut h = self.h.min(cap);
         let interpolant = loop {
@@ -161,7 +198,7 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
     }
 
     /// Traces the ray to its end, showing every accepted step to `visit`.
-    pub fn run(mut self, mut visit: impl FnMut(&HamiltonianStep) -> Visit) -> Trace {
+    pub fn run(mut self, mut visit: impl FnMut(&HamiltonianStep<N>) -> Visit) -> Trace {
         let start = unpack(&self.y);
         let start_region = self.metric.region(&start.x);
         let mut max_h: f64 = self.metric.hamiltonian(&start.x, &start.p).abs();

@@ -4,11 +4,14 @@
 //! [`plane`] integrates spherically symmetric spacetimes in the ray's own plane (exactly,
 //! cheaper, with no poles). Both hand every accepted step to the caller, who tests its chord
 //! against a scene and may stop the ray. [`connect`] finds the ray between two given points
-//! of Schwarzschild spacetime and its bundle density.
+//! of Schwarzschild spacetime and its bundle density; [`aim`] does so for any metric, with the
+//! ray [`bundle`].
 //!
 //! [`Metric`]: crate::metric::Metric
 
+pub mod aim;
 pub mod binet_taylor;
+pub mod bundle;
 pub mod connect;
 pub mod dopri5;
 mod hamiltonian;
@@ -18,7 +21,7 @@ pub mod rk4;
 mod start_table;
 pub mod tangent_triangle;
 
-pub use hamiltonian::{angular_momentum_z, energy, trace, HamiltonianStep, HamiltonianTracer};
+pub use hamiltonian::{angular_momentum_z, energy, trace, Flow, HamiltonianStep, HamiltonianTracer, Ray};
 pub use interpolant::Interpolant;
 
 use crate::tensor::{Covector4, Vector4};

@@ -3,7 +3,8 @@
 
 use super::capabilities::{Capabilities, Tracers};
 use super::{
-    Ellis, Kerr, KerrNewman, Metric, Minkowski, Region, ReissnerNordstrom, Schwarzschild, UserMetric, WrittenMetric,
+    Dneg, Ellis, Kerr, KerrNewman, Metric, Minkowski, MorrisThorne, Region, ReissnerNordstrom, Schwarzschild,
+    UserMetric, Wormhole, WrittenMetric,
 };
 
 /// A spacetime of a scene. Cloning is cheap: a written metric shares its compiled expressions.
@@ -15,6 +16,8 @@ pub enum Spacetime {
     Ellis(Ellis),
     ReissnerNordstrom(ReissnerNordstrom),
     KerrNewman(KerrNewman),
+    /// The Morris–Thorne wormhole of *Interstellar* ([`Dneg`]'s shape).
+    Wormhole(Wormhole),
     /// A metric written as expressions in a scene file.
     Written(UserMetric<WrittenMetric>),
 }
@@ -82,6 +85,19 @@ impl Spacetime {
         Ok(Spacetime::Ellis(Ellis::new(throat)))
     }
 
+    /// The wormhole of *Interstellar* (James et al. 2015): throat radius `throat > 0`, interior
+    /// length `length ≥ 0`, lensing width `lensing_width > 0`.
+    pub fn wormhole(throat: f64, length: f64, lensing_width: f64) -> Result<Self, ParameterError> {
+        if !(throat.is_finite() && throat > 0.0) {
+            return Err(ParameterError(format!("throat radius must be a finite number > 0, got {throat}")));
+        }
+        let length = finite_non_negative("length", length)?;
+        if !(lensing_width.is_finite() && lensing_width > 0.0) {
+            return Err(ParameterError(format!("lensing width must be a finite number > 0, got {lensing_width}")));
+        }
+        Ok(Spacetime::Wormhole(MorrisThorne::new(Dneg::new(throat, length, lensing_width))))
+    }
+
     /// Stable lower-case name, as in scene files.
     pub fn name(&self) -> &'static str {
         match self {
@@ -91,6 +107,7 @@ impl Spacetime {
             Spacetime::Ellis(_) => "ellis",
             Spacetime::ReissnerNordstrom(_) => "reissner-nordstrom",
             Spacetime::KerrNewman(_) => "kerr-newman",
+            Spacetime::Wormhole(_) => "wormhole",
             Spacetime::Written(_) => "metric",
         }
     }
@@ -115,6 +132,7 @@ impl Spacetime {
             Spacetime::Ellis(m) => m,
             Spacetime::ReissnerNordstrom(m) => m,
             Spacetime::KerrNewman(m) => m,
+            Spacetime::Wormhole(m) => m,
             Spacetime::Written(m) => m,
         }
     }
@@ -129,6 +147,7 @@ impl Spacetime {
             Spacetime::Ellis(m) => m.choose_tracer(tracers),
             Spacetime::ReissnerNordstrom(m) => m.choose_tracer(tracers),
             Spacetime::KerrNewman(m) => m.choose_tracer(tracers),
+            Spacetime::Wormhole(m) => m.choose_tracer(tracers),
             Spacetime::Written(m) => m.choose_tracer(tracers),
         }
     }
@@ -159,5 +178,10 @@ mod tests {
         assert!(Spacetime::kerr_newman(1.0, 0.6, 0.81).is_err());
         assert!(Spacetime::kerr_newman(1.0, f64::NAN, 0.0).is_err());
         assert_eq!(Spacetime::ellis(2.0).unwrap().name(), "ellis");
+        assert!(Spacetime::wormhole(1.0, 0.0, 0.05).is_ok());
+        assert!(Spacetime::wormhole(0.0, 0.01, 0.05).is_err());
+        assert!(Spacetime::wormhole(1.0, -0.01, 0.05).is_err());
+        assert!(Spacetime::wormhole(1.0, 0.01, 0.0).is_err());
+        assert!(Spacetime::wormhole(1.0, f64::INFINITY, 0.05).is_err());
     }
 }

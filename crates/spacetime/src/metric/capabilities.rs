@@ -191,3 +191,12 @@ pub(super) fn tetrad_lapse<M: Metric>(m: &M, region: Region, p: [f64; 3]) -> f64
         LocalFrame::Radial { .. } | LocalFrame::None => 1.0,
     }
 }
+
+/// Where an observer can stay at rest in a wormhole of throat radius `throat`: at every point
+/// its chart reaches (world radius ≥ throat in either region).
+pub(super) fn rest_on_chart<M: Metric>(metric: &M, region: Region, p: [f64; 3], throat: f64) -> Result<(), NoRest> {
+    match metric.world_to_chart(region, p, 0.0) {
+        Some(_) => Ok(()),
+        None => Err(NoRest::OffChart { radius: crate::tensor::norm3(&p), throat }),
+    }
+}

@@ -11,7 +11,7 @@
 //! upper region and `−` (antipodal) in the lower one, so a ray straight through the throat keeps
 //! its direction and neither region is mirrored. The throat is the sphere `|Y| = b₀` of both.
 
-use super::capabilities::{radial_frame, Capabilities, LocalFrame, NoRest, Tracers};
+use super::capabilities::{radial_frame, rest_on_chart, Capabilities, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region, WorldPoint};
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
@@ -228,10 +228,7 @@ impl Capabilities for Ellis {
     }
 
     fn rest(&self, region: Region, p: [f64; 3]) -> Result<(), NoRest> {
-        match self.world_to_chart(region, p, 0.0) {
-            Some(_) => Ok(()),
-            None => Err(NoRest::OffChart { radius: crate::tensor::norm3(&p), throat: self.throat }),
-        }
+        rest_on_chart(self, region, p, self.throat)
     }
 
     fn local_frame(&self, _region: Region, p: [f64; 3]) -> LocalFrame {

@@ -32,20 +32,18 @@
 //! side is joined only by rays that reach that side (`connect_along` drops the others before
 //! refining them).
 //!
-//! Kerr and the Ellis wormhole have no connection solver: they render with BSDF sampling alone.
+//! Other curved spacetimes aim their light rays ([`super::aimed`]).
 
-use super::path::{leave, shift};
-use super::stats::PathStats;
+use super::point::{choice, sample_point, solid_angle_density, traced_arrival, LightPoint};
+use super::{contribution, Lit, Shading};
 use crate::color::Rgb;
 use crate::geometry::Vec3;
-use crate::propagator::{Arrival, Propagator, RayEnd};
-use crate::world::{Emission, World};
-use spacetime::geodesic::connect::{Connection, Way, Waypoints};
+use crate::integrator::path::shift;
+use crate::integrator::stats::PathStats;
+use crate::propagator::{Arrival, Propagator};
+use crate::sampling::Sampler;
+use spacetime::geodesic::connect::{short_way_arrives_behind, Connection, Way, Waypoints};
 use std::f64::consts::PI;
-
-/// A traced connection counts as reaching the sampled point when it hits the light within this
-/// many chord tolerances ε of it (the chord test places hits to within ~ε of the curve).
-const ARRIVAL_TOLERANCE: f64 = 64.0;
 
 /// How fast the probability of trying the long way falls with the azimuth it sweeps beyond π
 /// ([`way_probability`]).
@@ -74,17 +72,6 @@ pub(super) fn way_probability(way: Way, x: Vec3, y: Vec3) -> f64 {
     }
 }
 
-/// A point sampled on a light.
-pub(super) struct LightPoint {
-    object: usize,
-    point: Vec3,
-    /// World unit normal.
-    normal: Vec3,
-    emission: Emission,
-    /// Probability of the light's choice, over its world area: the point's area density.
-    density: f64,
-}
-
 /// A sampled light point joined to the shading point, before the visibility test.
 pub(super) struct Candidate<'w> {
     /// Direction the ray leaves the shading point in (its static frame).
@@ -100,43 +87,64 @@ pub(super) struct Candidate<'w> {
     waypoints: &'w Waypoints,
 }
 
-/// Samples a light in the region of `at` (`u_choice` picks the light, `u_point` the point).
-pub(super) fn sample_point(world: &World, at: &Arrival, u_choice: f64, u_point: [f64; 2]) -> Option<LightPoint> {
-    let choice = world.choose_light(at.region, u_choice)?;
-    let light = world.object(at.region, choice.object);
-    let emission = light.emission?;
-    let (point, normal) = light.shape.sample_area(u_point);
-    let density = choice.probability / light.shape.area();
-    Some(LightPoint { object: choice.object, point, normal, emission, density })
+/// One light point joined by its geodesics, the short way round the hole and, at random, the
+/// long way.
+pub(super) fn direct(
+    lit: Lit<'_>,
+    at: &Arrival,
+    shading: &Shading<'_>,
+    sampler: &mut Sampler,
+    stats: &mut PathStats,
+) -> Rgb {
+    let (u_choice, u_point, u_way) = (sampler.next_f64(), sampler.next_2d(), sampler.next_f64());
+    let Some(point) = sample_point(lit.world, at, u_choice, u_point) else {
+        return Rgb::ZERO;
+    };
+    let (mut sum, mut waypoints) = (Rgb::ZERO, Waypoints::default());
+    for way in Way::BOTH {
+        let probability = way_probability(way, at.hit.p, point.point);
+        if u_way >= probability || (way == Way::Short && reflects_none(at, shading, &point)) {
+            continue;
+        }
+        if let Some(light) = join(&point, lit.propagator, at, (way, probability), &mut waypoints) {
+            let visible = || light.arrives(lit, at, shading.ng, stats);
+            sum += contribution(shading, light.wi, light.emitted, light.pdf, visible);
+        }
+    }
+    sum
 }
 
-impl LightPoint {
-    /// The sampled point, in world coordinates.
-    pub(super) fn position(&self) -> Vec3 {
-        self.point
-    }
+/// Whether an opaque surface reflects none of the light coming the short way from `point`: when
+/// its front (the side `wo` is on) faces the centre and the point lies on or behind its tangent
+/// plane, the short way leaves it into the back ([`short_way_arrives_behind`], reversed). Such
+/// points are not joined at all (the surface behind a one-sided light is the other case, dropped
+/// by the connection solver).
+fn reflects_none(at: &Arrival, shading: &Shading<'_>, point: &LightPoint) -> bool {
+    let front = if shading.wo.z >= 0.0 { at.hit.ns } else { -at.hit.ns };
+    !shading.bsdf.has_transmission()
+        && short_way_arrives_behind(front.to_array(), point.point.to_array(), at.hit.p.to_array())
+}
 
-    /// Joins the shading point of `at` to this point by the ray going `way` round the hole,
-    /// which was tried with probability `probability` ([`way_probability`]), keeping its
-    /// waypoints in `waypoints`; `None` if there is none or it carries nothing.
-    pub(super) fn join<'w>(
-        &self,
-        propagator: &Propagator,
-        at: &Arrival,
-        (way, probability): (Way, f64),
-        waypoints: &'w mut Waypoints,
-    ) -> Option<Candidate<'w>> {
-        let facing = (!self.emission.two_sided).then_some(self.normal);
-        let connection = propagator.connect(at.hit.p, self.point, way, facing, waypoints)?;
-        let normal_local = propagator.local_normal(at.region, self.point, self.normal);
-        let emitted = self.emission.radiance_towards(normal_local, -Vec3::from_array(connection.end));
-        let pdf = probability * solid_angle_density(self.density, self.normal, &connection);
-        if emitted == Rgb::ZERO || !(pdf > 0.0 && pdf.is_finite()) {
-            return None;
-        }
-        let wi = Vec3::from_array(connection.start);
-        Some(Candidate { wi, emitted, pdf, object: self.object, point: self.point, connection, waypoints })
+/// Joins the shading point of `at` to the light point `light` by the ray going `way` round the hole,
+/// which was tried with probability `probability` ([`way_probability`]), keeping its
+/// waypoints in `waypoints`; `None` if there is none or it carries nothing.
+fn join<'w>(
+    light: &LightPoint,
+    propagator: &Propagator,
+    at: &Arrival,
+    (way, probability): (Way, f64),
+    waypoints: &'w mut Waypoints,
+) -> Option<Candidate<'w>> {
+    let facing = (!light.emission.two_sided).then_some(light.normal);
+    let connection = propagator.connect(at.hit.p, light.point, way, facing, waypoints)?;
+    let normal_local = propagator.local_normal(at.region, light.point, light.normal);
+    let emitted = light.emission.radiance_towards(normal_local, -Vec3::from_array(connection.end));
+    let pdf = probability * connection_density(light.density(), light.normal, &connection);
+    if emitted == Rgb::ZERO || !(pdf > 0.0 && pdf.is_finite()) {
+        return None;
     }
+    let wi = Vec3::from_array(connection.start);
+    Some(Candidate { wi, emitted, pdf, object: light.object, point: light.point, connection, waypoints })
 }
 
 impl Candidate<'_> {
@@ -144,23 +152,18 @@ impl Candidate<'_> {
     /// reaches the sampled point unoccluded: the radiance factor `(E_x/E_y)⁴` if so, else
     /// `None`. A connection whose triangle no object comes near (within ε) is seen without
     /// tracing it; any other is traced against the scene.
-    pub(super) fn arrives(
-        &self,
-        world: &World,
-        propagator: &Propagator,
-        at: &Arrival,
-        ng_local: Vec3,
-        stats: &mut PathStats,
-    ) -> Option<f32> {
-        if self.is_clear(world, propagator, at) {
+    pub(super) fn arrives(&self, lit: Lit<'_>, at: &Arrival, ng_local: Vec3, stats: &mut PathStats) -> Option<f32> {
+        if self.is_clear(lit, at) {
+            let propagator = lit.propagator;
             return Some(shift(propagator.lapse(at.region, at.hit.p) / propagator.lapse(at.region, self.point)));
         }
-        self.traced(world, propagator, at, ng_local, stats)
+        self.traced(lit, at, ng_local, stats)
     }
 
     /// Whether no object comes near the triangle that holds the connection, or else the
     /// triangles between its waypoints, except the two objects it joins, at its ends.
-    fn is_clear(&self, world: &World, propagator: &Propagator, at: &Arrival) -> bool {
+    fn is_clear(&self, lit: Lit<'_>, at: &Arrival) -> bool {
+        let Lit { world, propagator } = lit;
         let (x, y) = (at.hit.p.to_array(), self.point.to_array());
         let clear = |triangle: [[f64; 3]; 3], first: bool, last: bool| {
             let [a, z, b] = triangle.map(Vec3::from_array);
@@ -182,61 +185,39 @@ impl Candidate<'_> {
     }
 
     /// [`Candidate::arrives`] by tracing the connection against the scene.
-    fn traced(
-        &self,
-        world: &World,
-        propagator: &Propagator,
-        at: &Arrival,
-        ng_local: Vec3,
-        stats: &mut PathStats,
-    ) -> Option<f32> {
-        let origin = leave(at.hit.p, at.hit.ng, ng_local, self.wi);
-        stats.rays += 1;
-        match propagator.trace(world, at.region, origin, self.wi) {
-            RayEnd::Hit(a)
-                if a.object == self.object
-                    && (a.hit.p - self.point).length() <= ARRIVAL_TOLERANCE * propagator.epsilon() =>
-            {
-                Some(shift(a.energy))
-            }
-            RayEnd::Failed => {
-                stats.fates.failed += 1;
-                None
-            }
-            _ => None,
-        }
+    fn traced(&self, lit: Lit<'_>, at: &Arrival, ng_local: Vec3, stats: &mut PathStats) -> Option<f32> {
+        traced_arrival(lit, at, ng_local, self.wi, (self.object, self.point), stats)
     }
 }
 
 /// Density in solid angle at `from` with which [`LightPoint::join`] would have produced the ray
 /// that reached the emitter of `arrival`: `None` where it never would (the ray wound round the
 /// hole, or the emitter is not sampled), so BSDF sampling's MIS weight is then 1.
-pub(super) fn emitter_pdf(world: &World, propagator: &Propagator, from: Vec3, arrival: &Arrival) -> Option<f64> {
+pub(super) fn emitter_pdf(lit: Lit<'_>, from: Vec3, arrival: &Arrival) -> Option<f64> {
     // Each way round, the ray is unique (monotone shooting, see `connect`): a ray that went less
     // than once round is exactly the one `connect` finds, that way round, between its ends.
     let way = Way::of_sweep(arrival.swept?)?;
-    let choice = world.light_probability(arrival.region, arrival.object);
-    if choice == 0.0 {
-        return None;
-    }
-    let connection = propagator.connect(from, arrival.hit.p, way, None, &mut Waypoints::default())?;
-    let area = world.object(arrival.region, arrival.object).shape.area();
+    let (probability, area) = choice(lit.world, arrival)?;
+    let connection = lit.propagator.connect(from, arrival.hit.p, way, None, &mut Waypoints::default())?;
     let pdf =
-        way_probability(way, from, arrival.hit.p) * solid_angle_density(choice / area, arrival.hit.ng, &connection);
+        way_probability(way, from, arrival.hit.p) * connection_density(probability / area, arrival.hit.ng, &connection);
     Some(pdf).filter(|p| *p > 0.0 && p.is_finite())
 }
 
-/// `p_ω = p_A / (|n · t| dΩ/dA⊥)` for area density `p_A = P(light)/A`.
-fn solid_angle_density(area_density: f64, normal: Vec3, connection: &Connection) -> f64 {
-    let cos = normal.dot(Vec3::from_array(connection.end_tangent)).abs();
-    area_density / (cos * connection.solid_angle_per_area)
+/// [`solid_angle_density`] of a connection.
+fn connection_density(area_density: f64, normal: Vec3, connection: &Connection) -> f64 {
+    let tangent = Vec3::from_array(connection.end_tangent);
+    solid_angle_density(area_density, normal, tangent, connection.solid_angle_per_area)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrator::path::leave;
+    use crate::propagator::RayEnd;
     use crate::settings::Intersection;
     use crate::test_scenes::{floor_lamp_board_ball, uniform};
+    use crate::world::World;
     use spacetime::{Region, Schwarzschild, Spacetime};
 
     /// The chord tracer round the test scene's hole (mass 0.3).
@@ -268,7 +249,7 @@ mod tests {
         way: Way,
         waypoints: &'w mut Waypoints,
     ) -> Option<Candidate<'w>> {
-        point.join(propagator, at, (way, way_probability(way, at.hit.p, point.position())), waypoints)
+        join(point, propagator, at, (way, way_probability(way, at.hit.p, point.point)), waypoints)
     }
 
     /// The triangle tests never clear a connection that tracing finds blocked, and they clear a
@@ -284,8 +265,9 @@ mod tests {
                 let mut waypoints = Waypoints::default();
                 let Some(candidate) = joined(&propagator, &at, &point, way, &mut waypoints) else { continue };
                 let mut stats = PathStats::default();
-                let traced = candidate.traced(&world, &propagator, &at, at.ng_local, &mut stats);
-                let clear = candidate.is_clear(&world, &propagator, &at);
+                let lit = Lit { world: &world, propagator: &propagator };
+                let traced = candidate.traced(lit, &at, at.ng_local, &mut stats);
+                let clear = candidate.is_clear(lit, &at);
                 match traced {
                     Some(shift) => {
                         seen += 1;
@@ -333,7 +315,7 @@ mod tests {
                 if arrival.object != candidate.object {
                     continue;
                 }
-                let pdf = emitter_pdf(&world, &propagator, at.hit.p, &arrival).unwrap();
+                let pdf = emitter_pdf(Lit { world: &world, propagator: &propagator }, at.hit.p, &arrival).unwrap();
                 // The ray arrives within ~ε of the point; the density changes little over that.
                 assert!(
                     (pdf / candidate.pdf - 1.0).abs() < 1e-3,

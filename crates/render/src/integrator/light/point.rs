@@ -1,0 +1,84 @@
+//! A point sampled on a light, and the solid-angle density a light ray to it has.
+
+use super::Lit;
+use crate::geometry::Vec3;
+use crate::integrator::path::{leave, shift};
+use crate::integrator::stats::PathStats;
+use crate::propagator::{Arrival, RayEnd};
+use crate::world::{Emission, World};
+
+/// A traced light ray counts as reaching its light point when it hits the light within this
+/// many chord tolerances ε of it (the chord test places hits to within ~ε of the curve, and a
+/// connection passes within ~ε of its point).
+const ARRIVAL_TOLERANCE: f64 = 64.0;
+
+/// A point sampled on a light.
+pub(super) struct LightPoint {
+    pub object: usize,
+    pub point: Vec3,
+    /// World unit normal.
+    pub normal: Vec3,
+    pub emission: Emission,
+    /// Probability of the light's choice.
+    pub probability: f64,
+    /// The light's world area (points are sampled uniformly in it).
+    pub area: f64,
+}
+
+impl LightPoint {
+    /// The point's area density: the light's probability over its world area.
+    pub fn density(&self) -> f64 {
+        self.probability / self.area
+    }
+}
+
+/// Samples a light in the region of `at` (`u_choice` picks the light, `u_point` the point).
+pub(super) fn sample_point(world: &World, at: &Arrival, u_choice: f64, u_point: [f64; 2]) -> Option<LightPoint> {
+    let choice = world.choose_light(at.region, u_choice)?;
+    let light = world.object(at.region, choice.object);
+    let emission = light.emission?;
+    let (point, normal) = light.shape.sample_area(u_point);
+    let (probability, area) = (choice.probability, light.shape.area());
+    Some(LightPoint { object: choice.object, point, normal, emission, probability, area })
+}
+
+/// The probability of choosing the emitter `arrival` reached, and its world area: `None` where
+/// the emitter is not sampled.
+pub(super) fn choice(world: &World, arrival: &Arrival) -> Option<(f64, f64)> {
+    let probability = world.light_probability(arrival.region, arrival.object);
+    (probability > 0.0).then(|| (probability, world.object(arrival.region, arrival.object).shape.area()))
+}
+
+/// `p_ω = p_A / (|n · t| dΩ/dA⊥)`: the solid-angle density at the start of a light ray that
+/// reaches a surface of world normal `normal` along world tangent `tangent`, with bundle factor
+/// `dΩ/dA⊥` (solid angle at the start per world area across the beam), for area density `p_A`.
+pub(super) fn solid_angle_density(area_density: f64, normal: Vec3, tangent: Vec3, solid_angle_per_area: f64) -> f64 {
+    area_density / (normal.dot(tangent).abs() * solid_angle_per_area)
+}
+
+/// Whether the light ray leaving the shading point of `at` (local geometric normal `ng_local`)
+/// along local direction `wi` reaches the point `point` of light `object`, traced against the
+/// scene as any ray is: the radiance factor `(E_x/E_y)⁴` if so, else `None`.
+pub(super) fn traced_arrival(
+    lit: Lit<'_>,
+    at: &Arrival,
+    ng_local: Vec3,
+    wi: Vec3,
+    (object, point): (usize, Vec3),
+    stats: &mut PathStats,
+) -> Option<f32> {
+    let origin = leave(at.hit.p, at.hit.ng, ng_local, wi);
+    stats.rays += 1;
+    match lit.propagator.trace(lit.world, at.region, origin, wi) {
+        RayEnd::Hit(a)
+            if a.object == object && (a.hit.p - point).length() <= ARRIVAL_TOLERANCE * lit.propagator.epsilon() =>
+        {
+            Some(shift(a.energy))
+        }
+        RayEnd::Failed => {
+            stats.fates.failed += 1;
+            None
+        }
+        RayEnd::Hit(_) | RayEnd::Escaped { .. } | RayEnd::Captured => None,
+    }
+}

@@ -1,0 +1,129 @@
+//! Light rays aimed between two points of any curved spacetime ([`spacetime::geodesic::aim`]),
+//! in the renderer's world and local frames: the generic light connector.
+
+use super::Propagator;
+use crate::geometry::Vec3;
+use spacetime::geodesic::aim::{aim, AimSettings};
+use spacetime::geodesic::plane::PlaneMetric;
+use spacetime::geodesic::{Integrator, TraceSettings};
+use spacetime::metric::{LocalFrame, Metric, Tracers};
+use spacetime::{Region, Tetrad};
+
+/// Shots an aim may take: Newton's method converges in two or three from a good first shot;
+/// aims that need more are near a caustic or the photon sphere, where BSDF sampling does as well.
+const MAX_SHOTS: u32 = 12;
+
+/// Relative tolerance of an aim's shots. Their rays are not tested against the scene (the aimed
+/// ray is then traced as any ray is, at the render's tolerance), so they need only pass the
+/// light point within the chord tolerance ε: at 10⁻⁵ a step's error stays within 10⁻⁵ of the
+/// distance from the centre, and a shot across a scene errs by a few 10⁻⁴ of its radius at most,
+/// well inside the 64 ε a traced aim may land from its point; the density errs by ~10⁻⁵.
+const AIM_RTOL: f64 = 1e-5;
+
+/// The step cap of an aim's shots, as a fraction of the distance to the centre: loose, since no
+/// chord of theirs is tested against the scene: error control, not the cap, sets their steps.
+const AIM_STEP_FRACTION: f64 = 8.0;
+
+/// A light ray from a shading point to a light point, aimed ([`Propagator::aim`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aimed {
+    /// Direction the ray leaves the start in, in the local frame there (world axes).
+    pub start: Vec3,
+    /// Direction of travel at the end, in the local frame there (world axes).
+    pub end: Vec3,
+    /// Unit world tangent at the end.
+    pub end_tangent: Vec3,
+    /// Solid angle at the start per world area across `end_tangent` at the end.
+    pub solid_angle_per_area: f64,
+}
+
+impl Propagator {
+    /// Whether rays are aimed between points ([`Propagator::aim`]) rather than connected by the
+    /// spacetime's own connector: in curved spacetimes without one, or where asked to
+    /// ([`Propagator::with_generic_connector`]), when rays are traced by the chord method.
+    pub fn aims(&self) -> bool {
+        !self.flat && self.connector.is_none() && matches!(self.intersection, crate::settings::Intersection::Chord)
+    }
+
+    /// Connects light by the generic aim in every curved spacetime, the spacetime's own
+    /// connector set aside (to compare the two).
+    pub fn with_generic_connector(mut self) -> Self {
+        self.connector = None;
+        self
+    }
+
+    /// The light ray from world point `from` to world point `to` of `region` that Newton's
+    /// method finds from the straight line between them, with its bundle density; `None` where
+    /// it finds none (or in flat space, where shadow rays are straight).
+    pub fn aim(&self, region: Region, from: Vec3, to: Vec3) -> Option<Aimed> {
+        self.spacetime.choose_tracer(AimRay { propagator: self, region, from, to })
+    }
+
+    fn aim_four_d<M: Metric>(&self, metric: &M, region: Region, from: Vec3, to: Vec3) -> Option<Aimed> {
+        let x = metric.world_to_chart(region, self.to_chart(from).to_array(), 0.0)?;
+        let frame = Tetrad::local_observer(metric, &x).ok()?;
+        let trace = TraceSettings {
+            integrator: Integrator::Adaptive { rtol: AIM_RTOL },
+            max_step_fraction: AIM_STEP_FRACTION,
+            ..self.trace
+        };
+        let settings = AimSettings { trace, tolerance: self.epsilon, max_shots: MAX_SHOTS };
+        let target = self.to_chart(to).to_array();
+        // The first guess, in the frame whose axes follow the chart's: the chart's straight line.
+        let y = metric.world_to_chart(region, target, 0.0)?;
+        let guess = [y[1] - x[1], y[2] - x[2], y[3] - x[3]];
+        let found = aim(metric, x, &frame, target, guess, &settings)?;
+        let (end, _) = Tetrad::local_observer(metric, &found.end.x).ok()?.backward_direction(&found.end.p);
+        let end_tangent = self.to_world(Vec3::from_array(found.end_tangent));
+        Some(Aimed {
+            start: self.local_direction(region, from, Vec3::from_array(found.direction), found.start_tangent),
+            end: self.local_direction(region, to, Vec3::from_array(end), found.end_tangent),
+            end_tangent,
+            solid_angle_per_area: found.solid_angle_per_area,
+        })
+    }
+
+    /// The direction, in the renderer's local frame at world point `p`, of a ray with unit
+    /// world tangent `tangent` (chart axes) that the chart's local observer measures along
+    /// `measured` (chart axes). Where the renderer's frame is the chart observer's (a tetrad)
+    /// that is `measured`; a radially scaled frame maps world vectors by `diag(1/κ, 1, 1)`
+    /// ([`LocalFrame::Radial`]), whose axes are the world's even where the chart's are not (the
+    /// lower region of a wormhole, whose world is the chart turned inside out).
+    fn local_direction(&self, region: Region, p: Vec3, measured: Vec3, tangent: [f64; 3]) -> Vec3 {
+        match self.local_frame(region, p) {
+            LocalFrame::Tetrad { .. } => self.to_world(measured),
+            LocalFrame::Radial { kappa } => {
+                let t = self.to_world(Vec3::from_array(tangent));
+                if p == Vec3::ZERO {
+                    return t;
+                }
+                (t + ((1.0 / kappa - 1.0) * t.dot(p) / p.length_squared()) * p).normalize()
+            }
+            LocalFrame::None => self.to_world(Vec3::from_array(tangent)),
+        }
+    }
+}
+
+/// An aim, handed to the tracer the spacetime chooses: every curved one is aimed in 4-D.
+struct AimRay<'a> {
+    propagator: &'a Propagator,
+    region: Region,
+    from: Vec3,
+    to: Vec3,
+}
+
+impl Tracers for AimRay<'_> {
+    type Output = Option<Aimed>;
+
+    fn straight(self) -> Option<Aimed> {
+        None
+    }
+
+    fn in_plane<M: PlaneMetric>(self, metric: &M) -> Option<Aimed> {
+        self.four_d(metric)
+    }
+
+    fn four_d<M: Metric>(self, metric: &M) -> Option<Aimed> {
+        self.propagator.aim_four_d(metric, self.region, self.from, self.to)
+    }
+}
