@@ -159,9 +159,13 @@ pub fn propagator(scene: &Scene) -> Propagator {
         .map(|b| b.min.abs().max(b.max.abs()).length())
         .chain([scene.camera.position.length()])
         .fold(0.0f64, f64::max);
-    let propagator =
-        Propagator::new(scene.spacetime, radius.max(1e-9), scene.settings.geodesic_rtol, scene.settings.intersection)
-            .with_axis(scene.axis);
+    let propagator = Propagator::new(
+        scene.spacetime.clone(),
+        radius.max(1e-9),
+        scene.settings.geodesic_rtol,
+        scene.settings.intersection,
+    )
+    .with_axis(scene.axis);
     match scene.settings.connector {
         Connector::Auto => propagator,
         Connector::Aimed => propagator.with_generic_connector(),

@@ -135,7 +135,7 @@ fn a_thin_plate_inside_a_long_step_is_hit_by_chords_and_missed_by_sign_changes()
     let hole = Spacetime::schwarzschild(0.01).unwrap();
     let origin = Vec3::new(0.0, 1.0, 80.0);
     let dir = Vec3::new(0.0, 0.0, -1.0);
-    let chord = Propagator::new(hole, 100.0, 1e-8, Intersection::Chord);
+    let chord = Propagator::new(hole.clone(), 100.0, 1e-8, Intersection::Chord);
     let poster = Propagator::new(hole, 100.0, 1e-8, Intersection::POSTER);
     match chord.trace(&world, Region::Upper, origin, dir) {
         RayEnd::Hit(a) => assert!((a.hit.p.z - 50.0005).abs() < 1e-3, "hit at {:?}", a.hit.p),

@@ -113,6 +113,12 @@ impl<'a> Node<'a> {
         self.doc.error(self.span.start, &self.path, message)
     }
 
+    /// An error about byte `within` of this string's text: the column inside an expression. The
+    /// text starts one byte after the value's opening quote (exact for strings without escapes).
+    pub fn err_within(&self, within: usize, message: impl Into<String>) -> SceneError {
+        self.doc.error(self.span.start + 1 + within, &self.path, message)
+    }
+
     /// "expected …, got …" about this value.
     pub fn expected(&self, expected: &str) -> SceneError {
         self.err(format!("expected {expected}, got {}", describe(self.value)))

@@ -41,6 +41,7 @@ pub fn scatter(spacetime: &Spacetime, b: f64, inclination_rad: f64, integrator: 
         Spacetime::Wormhole(m) => in_plane(m, b, inclination_rad, integrator),
         Spacetime::Kerr(m) => hamiltonian(m, b, inclination_rad, integrator),
         Spacetime::KerrNewman(m) => hamiltonian(m, b, inclination_rad, integrator),
+        Spacetime::Written(m) => hamiltonian(m, b, inclination_rad, integrator),
     }
 }
 

@@ -5,10 +5,18 @@
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
 use spacetime::metric::conformance::{check_capabilities, check_metric, chosen_tracer};
-use spacetime::metric::NoRest;
+use spacetime::metric::expression::{Expression, Names};
+use spacetime::metric::{Coordinates, NoRest, UserMetric, WrittenMetric};
 use spacetime::{Region, Spacetime};
 
-/// One or more parameter sets of every built-in spacetime.
+/// A metric written as expressions of `coordinates` with parameters `M = 1`, `Q = 0.6`, `a = 0.7`, `w = 0.05` (no example point lies near their horizons, where finite differences fail).
+fn written(coordinates: Coordinates, components: &[(usize, usize, &str)]) -> Spacetime {
+    let names = Names { variables: coordinates.names(), constants: &[("M", 1.0), ("Q", 0.6), ("a", 0.7), ("w", 0.05)] };
+    let compiled = components.iter().map(|(a, b, text)| (*a, *b, Expression::compile(text, names).unwrap())).collect();
+    Spacetime::Written(UserMetric(WrittenMetric::new(coordinates, compiled, None, 1.0).unwrap()))
+}
+
+/// One or more parameter sets of every spacetime.
 fn examples() -> Vec<Spacetime> {
     let all = [
         Spacetime::Minkowski(spacetime::Minkowski),
@@ -25,6 +33,31 @@ fn examples() -> Vec<Spacetime> {
         Spacetime::wormhole(1.0, 0.01, 0.05).unwrap(),
         Spacetime::wormhole(1.0, 1.0, 1.0).unwrap(),
         Spacetime::wormhole(1.0, 0.0, 0.5).unwrap(),
+        written(
+            Coordinates::Spherical,
+            &[
+                (0, 0, "-(1 - 2*M/r + Q^2/r^2)"),
+                (1, 1, "1/(1 - 2*M/r + Q^2/r^2)"),
+                (2, 2, "r^2"),
+                (3, 3, "r^2*sin(theta)^2"),
+            ],
+        ),
+        // Kerr in Boyer–Lindquist coordinates (a = 0.7).
+        written(
+            Coordinates::Spherical,
+            &[
+                (0, 0, "-(1 - 2*M*r/(r^2 + a^2*cos(theta)^2))"),
+                (0, 3, "-2*M*a*r*sin(theta)^2/(r^2 + a^2*cos(theta)^2)"),
+                (1, 1, "(r^2 + a^2*cos(theta)^2)/(r^2 - 2*M*r + a^2)"),
+                (2, 2, "r^2 + a^2*cos(theta)^2"),
+                (3, 3, "(r^2 + a^2 + 2*M*r*a^2*sin(theta)^2/(r^2 + a^2*cos(theta)^2))*sin(theta)^2"),
+            ],
+        ),
+        // Flat space in a frame rotating about z, its light cylinder at ρ = 20.
+        written(
+            Coordinates::Cartesian,
+            &[(0, 0, "-(1 - w^2*(x^2 + y^2))"), (0, 1, "-w*y"), (0, 2, "w*x"), (1, 1, "1"), (2, 2, "1"), (3, 3, "1")],
+        ),
     ];
     // Compiles only while every variant is listed above.
     for s in &all {
@@ -35,7 +68,8 @@ fn examples() -> Vec<Spacetime> {
             | Spacetime::Ellis(_)
             | Spacetime::ReissnerNordstrom(_)
             | Spacetime::KerrNewman(_)
-            | Spacetime::Wormhole(_) => {}
+            | Spacetime::Wormhole(_)
+            | Spacetime::Written(_) => {}
         }
     }
     all.to_vec()
@@ -81,6 +115,7 @@ fn every_metric_answers_the_renderer_consistently() {
                     Spacetime::ReissnerNordstrom(m) => check_capabilities(m, region, p),
                     Spacetime::KerrNewman(m) => check_capabilities(m, region, p),
                     Spacetime::Wormhole(m) => check_capabilities(m, region, p),
+                    Spacetime::Written(m) => check_capabilities(m, region, p),
                 }
             }
         }

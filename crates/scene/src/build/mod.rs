@@ -4,6 +4,7 @@
 mod camera;
 mod gltf_object;
 mod material;
+mod metric;
 mod object;
 mod settings;
 mod sky;
@@ -153,6 +154,7 @@ const SPACETIMES: &[(&str, &[&str], SpacetimeReader)] = &[
     ("reissner-nordstrom", &["mass", "charge"], reissner_nordstrom),
     ("kerr-newman", &["mass", "spin", "charge", "axis"], kerr_newman),
     ("wormhole", &["throat", "length", "lensing_width"], wormhole),
+    ("metric", metric::KEYS, metric::metric),
 ];
 
 /// `[spacetime]`: the metric, validated by the physics crate, and its symmetry axis in the world

@@ -1,6 +1,7 @@
 //! The 4-D tracer: Hamilton's equations `dx^μ/dλ = ∂H/∂p_μ`, `dp_μ/dλ = −∂H/∂x^μ` for any metric,
 //! with RK4 or Dormand–Prince 5(4), a step cap proportional to the distance from the centre, and
-//! the ray's fate decided from the metric's horizon, regions and escape radius.
+//! the ray's fate decided from the metric's horizon, regions and escape radius (and, for metrics
+//! that say so, from a collapsing step: [`Metric::collapse_captures`]).
 //!
 //! The tracer integrates a [`Flow`]: the ray alone ([`Ray`], the state `(x, p)`), or the ray with
 //! fields riding along it ([`super::bundle::Bundle`]), whose first eight components are the ray.
@@ -212,6 +213,8 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
                         break Fate::Stopped;
                     }
                 }
+                Err(Failure::OutOfSteps) => break Fate::Failed(Failure::OutOfSteps),
+                Err(_) if self.metric.collapse_captures() => break Fate::Captured,
                 Err(failure) => break Fate::Failed(failure),
             }
         };

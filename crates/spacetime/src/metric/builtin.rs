@@ -1,13 +1,14 @@
-//! The closed set of built-in spacetimes, for scene files and the command line, validated on
-//! construction.
+//! The closed set of spacetimes of scene files and the command line — the built-in ones and a
+//! metric written in a scene file — validated on construction.
 
 use super::capabilities::{Capabilities, Tracers};
 use super::{
-    Dneg, Ellis, Kerr, KerrNewman, Metric, Minkowski, MorrisThorne, Region, ReissnerNordstrom, Schwarzschild, Wormhole,
+    Dneg, Ellis, Kerr, KerrNewman, Metric, Minkowski, MorrisThorne, Region, ReissnerNordstrom, Schwarzschild,
+    UserMetric, Wormhole, WrittenMetric,
 };
 
-/// A built-in spacetime.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A spacetime of a scene. Cloning is cheap: a written metric shares its compiled expressions.
+#[derive(Clone, Debug, PartialEq)]
 pub enum Spacetime {
     Minkowski(Minkowski),
     Schwarzschild(Schwarzschild),
@@ -17,6 +18,8 @@ pub enum Spacetime {
     KerrNewman(KerrNewman),
     /// The Morris–Thorne wormhole of *Interstellar* ([`Dneg`]'s shape).
     Wormhole(Wormhole),
+    /// A metric written as expressions in a scene file.
+    Written(UserMetric<WrittenMetric>),
 }
 
 /// A parameter outside the spacetime's domain.
@@ -105,6 +108,7 @@ impl Spacetime {
             Spacetime::ReissnerNordstrom(_) => "reissner-nordstrom",
             Spacetime::KerrNewman(_) => "kerr-newman",
             Spacetime::Wormhole(_) => "wormhole",
+            Spacetime::Written(_) => "metric",
         }
     }
 
@@ -129,6 +133,7 @@ impl Spacetime {
             Spacetime::ReissnerNordstrom(m) => m,
             Spacetime::KerrNewman(m) => m,
             Spacetime::Wormhole(m) => m,
+            Spacetime::Written(m) => m,
         }
     }
 
@@ -143,6 +148,7 @@ impl Spacetime {
             Spacetime::ReissnerNordstrom(m) => m.choose_tracer(tracers),
             Spacetime::KerrNewman(m) => m.choose_tracer(tracers),
             Spacetime::Wormhole(m) => m.choose_tracer(tracers),
+            Spacetime::Written(m) => m.choose_tracer(tracers),
         }
     }
 

@@ -41,6 +41,17 @@ pub enum NoRest {
     /// Where the chart does not reach (within a wormhole's throat radius `throat`, in world
     /// radius `radius`).
     OffChart { radius: f64, throat: f64 },
+    /// Where a written metric's time slices have collapsed (their lapse `1/√(−g^tt)` is
+    /// `lapse`, below the horizon criterion, or `g^tt ≥ 0`): rays there are captured.
+    Collapsed { lapse: f64 },
+    /// Where the metric's time direction `∂_t` is not timelike (`g_tt ≥ 0`), as in an
+    /// ergoregion.
+    TimeNotTimelike { g_tt: f64 },
+    /// Where the metric is not finite.
+    NotFinite,
+    /// Where the metric does not have the signature (−,+,+,+): `negative` of its eigenvalues
+    /// are negative, `zero` vanish.
+    NotLorentzian { negative: usize, zero: usize },
 }
 
 impl std::fmt::Display for NoRest {
@@ -58,6 +69,22 @@ impl std::fmt::Display for NoRest {
                 "lies within the wormhole's throat (world radius {radius} < throat {throat}); points of a \
                  region lie at world radius ≥ throat"
             ),
+            NoRest::Collapsed { lapse } => write!(
+                f,
+                "lies where the metric's time slices have collapsed (lapse 1/√(−g^tt) = {lapse}), at or behind a \
+                 horizon, where rays are captured"
+            ),
+            NoRest::TimeNotTimelike { g_tt } => write!(
+                f,
+                "lies where the metric's time direction is not timelike (g_tt = {g_tt} ≥ 0), where nothing can stay \
+                 at rest"
+            ),
+            NoRest::NotFinite => write!(f, "lies where the metric is not finite"),
+            NoRest::NotLorentzian { negative, zero } => write!(
+                f,
+                "lies where the metric is not of signature (−,+,+,+): it has {negative} negative and {zero} zero \
+                 eigenvalues (one negative, none zero wanted)"
+            ),
         }
     }
 }
@@ -72,6 +99,10 @@ pub enum Forwards {
     /// A spinning hole: rays forwards are the backward rays of its spin-reversed twin, in the
     /// chart [`SpinTwin`] maps to, which is regular on the future horizon they fall through.
     SpinTwin(SpinTwin),
+    /// No way to follow light forwards is known: a metric written by the user may depend on time
+    /// or rotate, and nothing here can prove it symmetric, so renderers that need forward light
+    /// refuse it rather than trace the wrong rays.
+    Unsupported,
 }
 
 /// The tracers a renderer offers; a metric picks the one that fits it
@@ -153,6 +184,27 @@ pub(super) fn rest_outside_horizon(region: Region, p: [f64; 3], horizon: Option<
     match horizon {
         Some(horizon) if radius <= horizon => Err(NoRest::InsideHorizon { radius, horizon }),
         _ => Ok(()),
+    }
+}
+
+/// The local observer's frame at world point `p` of `region` of a metric whose chart is not
+/// spherical: the static observer's where `∂_t` is timelike, else the normal observer's of the
+/// chart's time slices ([`Tetrad::local_observer`]), none where neither exists (inside a
+/// horizon, off the chart).
+pub(super) fn tetrad_frame<M: Metric>(m: &M, region: Region, p: [f64; 3]) -> LocalFrame {
+    let Some(x) = m.world_to_chart(region, p, 0.0) else { return LocalFrame::None };
+    match Tetrad::local_observer(m, &x) {
+        Ok(frame) => LocalFrame::Tetrad { frame, x },
+        Err(_) => LocalFrame::None,
+    }
+}
+
+/// `1/u^t` of the local observer ([`tetrad_frame`]): `√(−g_tt)` for the static one,
+/// `1/√(−g^tt)` for the normal one.
+pub(super) fn tetrad_lapse<M: Metric>(m: &M, region: Region, p: [f64; 3]) -> f64 {
+    match tetrad_frame(m, region, p) {
+        LocalFrame::Tetrad { frame, .. } => 1.0 / frame.e[0][0],
+        LocalFrame::Radial { .. } | LocalFrame::None => 1.0,
     }
 }
 

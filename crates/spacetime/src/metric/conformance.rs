@@ -126,8 +126,9 @@ pub fn check_capabilities<M: Capabilities>(m: &M, region: Region, p: [f64; 3]) {
     let rest = m.rest(region, p);
     let stat = chart.map(|x| Tetrad::static_observer(m, &x));
     // Inside a horizon nothing counts as at rest, though a static observer may exist again
-    // (inside Kerr's inner horizon): it would see nothing but the hole.
-    let horizon = matches!(rest, Err(NoRest::InsideHorizon { .. }));
+    // (inside Kerr's inner horizon, or a written metric's where its lapse has collapsed): it
+    // would see nothing but the hole.
+    let horizon = matches!(rest, Err(NoRest::InsideHorizon { .. } | NoRest::Collapsed { .. }));
     let exists = matches!(stat, Some(Ok(_)));
     assert!(horizon || rest.is_ok() == exists, "rest at {p:?}: {rest:?} vs static observer {stat:?}");
     if let (Ok(()), Some(x)) = (rest, chart) {

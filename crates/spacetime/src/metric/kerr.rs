@@ -9,7 +9,7 @@
 //! the past horizon, which backward-traced rays cross. The ring singularity (r = 0, z = 0) lies
 //! inside the horizon, where rays are stopped.
 
-use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
+use super::capabilities::{tetrad_frame, tetrad_lapse, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::spin_twin::SpinTwin;
 use super::user::Scalar;
@@ -125,11 +125,11 @@ impl Capabilities for Kerr {
     }
 
     fn local_frame(&self, region: Region, p: [f64; 3]) -> LocalFrame {
-        spinning_frame(self, region, p)
+        tetrad_frame(self, region, p)
     }
 
     fn observer_lapse(&self, region: Region, p: [f64; 3]) -> f64 {
-        spinning_lapse(self, region, p)
+        tetrad_lapse(self, region, p)
     }
 
     fn impact_bound(&self, _radius: f64) -> Option<f64> {
@@ -161,25 +161,6 @@ pub(super) fn spinning_rest<M: KerrSchild>(m: &M, region: Region, p: [f64; 3]) -
         return Err(NoRest::InsideHorizon { radius: m.radial_coordinate(&x), horizon: m.horizon_radius() });
     }
     Tetrad::static_observer(m, &x).map(|_| ()).map_err(|_| NoRest::InsideErgoregion)
-}
-
-/// The local observer's frame about a hole of Kerr's family: the static observer's, the normal
-/// observer's inside the ergoregion, none inside the horizon.
-pub(super) fn spinning_frame<M: KerrSchild>(m: &M, region: Region, p: [f64; 3]) -> LocalFrame {
-    let Some(x) = m.world_to_chart(region, p, 0.0) else { return LocalFrame::None };
-    match Tetrad::local_observer(m, &x) {
-        Ok(frame) => LocalFrame::Tetrad { frame, x },
-        Err(_) => LocalFrame::None,
-    }
-}
-
-/// `1/u^t` of the local observer ([`spinning_frame`]): `√(−g_tt)` for the static one,
-/// `1/√(−g^tt)` for the normal one.
-pub(super) fn spinning_lapse<M: KerrSchild>(m: &M, region: Region, p: [f64; 3]) -> f64 {
-    match spinning_frame(m, region, p) {
-        LocalFrame::Tetrad { frame, .. } => 1.0 / frame.e[0][0],
-        LocalFrame::Radial { .. } | LocalFrame::None => 1.0,
-    }
 }
 
 #[cfg(test)]

@@ -8,8 +8,9 @@
 //! `r₊ = M + √(M² − a² − Q²)`, and the circular equatorial photon orbits at the roots of
 //! `r² − 3Mr + 2Q² ± 2a√(Mr − Q²) = 0` (+ prograde).
 
+use super::capabilities::{tetrad_frame, tetrad_lapse};
 use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
-use super::kerr::{spheroidal, spheroidal_fields, spinning_frame, spinning_lapse, spinning_rest};
+use super::kerr::{spheroidal, spheroidal_fields, spinning_rest};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::spin_twin::SpinTwin;
 use super::Region;
@@ -77,11 +78,11 @@ impl Capabilities for KerrNewman {
     }
 
     fn local_frame(&self, region: Region, p: [f64; 3]) -> LocalFrame {
-        spinning_frame(self, region, p)
+        tetrad_frame(self, region, p)
     }
 
     fn observer_lapse(&self, region: Region, p: [f64; 3]) -> f64 {
-        spinning_lapse(self, region, p)
+        tetrad_lapse(self, region, p)
     }
 
     fn impact_bound(&self, _radius: f64) -> Option<f64> {

@@ -9,6 +9,7 @@ mod builtin;
 mod capabilities;
 pub mod conformance;
 mod ellis;
+pub mod expression;
 mod kerr;
 mod kerr_newman;
 mod kerr_schild;
@@ -19,6 +20,7 @@ mod reissner_nordstrom;
 mod schwarzschild;
 mod spin_twin;
 pub(crate) mod user;
+mod written;
 
 pub use builtin::{ParameterError, Spacetime};
 pub use capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
@@ -33,6 +35,7 @@ pub use reissner_nordstrom::ReissnerNordstrom;
 pub use schwarzschild::Schwarzschild;
 pub use spin_twin::SpinTwin;
 pub use user::{MetricFunction, Scalar, UserMetric};
+pub use written::{Coordinates, WrittenMetric, LAPSE_FLOOR};
 
 use crate::tensor::{contract, invert, quadratic, Covector4, Matrix4, Vector4};
 
@@ -99,6 +102,17 @@ pub trait Metric: Send + Sync {
 
     /// True inside an event horizon: a ray that gets there is captured.
     fn inside_horizon(&self, _x: &Vector4) -> bool {
+        false
+    }
+
+    /// Whether a ray whose integration collapses (error control asks for a step too small to make
+    /// progress, or the state stops being finite) has met a horizon or singularity and is
+    /// captured, rather than failed. Built-in metrics know their horizons and answer no: a
+    /// collapse there is a numerical failure. A metric written by a user may have horizons its
+    /// chart does not reach (Schwarzschild's coordinates end at `r = 2M`, where `g_rr` is
+    /// infinite) or singularities anywhere; they show themselves to the integrator only as a
+    /// collapsing step.
+    fn collapse_captures(&self) -> bool {
         false
     }
 

@@ -17,7 +17,7 @@
 //! ```
 
 use super::Metric;
-use crate::tensor::{invert, Matrix4, Vector4};
+use crate::tensor::{contract, invert, quadratic, Covector4, Matrix4, Vector4};
 use num_dual::{DualNum, DualSVec64};
 
 /// The scalar a [`MetricFunction`] is written over: `f64` or a dual number carrying derivatives.
@@ -40,6 +40,11 @@ pub trait MetricFunction: Send + Sync {
         false
     }
 
+    /// Whether a ray whose integration collapses is captured ([`Metric::collapse_captures`]).
+    fn collapse_captures(&self) -> bool {
+        false
+    }
+
     /// Whether `g` is independent of `t`.
     fn is_stationary(&self) -> bool {
         false
@@ -52,7 +57,7 @@ pub trait MetricFunction: Send + Sync {
 }
 
 /// A [`Metric`] from a [`MetricFunction`], with exact derivatives by automatic differentiation.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct UserMetric<F>(pub F);
 
 impl<F: MetricFunction> UserMetric<F> {
@@ -94,12 +99,27 @@ impl<F: MetricFunction> Metric for UserMetric<F> {
         (ginv, d)
     }
 
+    /// `dx^μ = g^{μν} p_ν` and, as `∂_α g^{μν} = −g^{μκ} (∂_α g_{κλ}) g^{λν}`,
+    /// `dp_α = −½ ∂_α g^{μν} p_μ p_ν = ½ (∂_α g_{κλ}) dx^κ dx^λ`: the derivatives of the metric
+    /// itself suffice, 64 products where those of the inverse take a thousand.
+    fn geodesic_rhs(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
+        let (g, dg) = self.metric_with_derivatives(x);
+        let ginv = invert(&g).unwrap_or([[f64::NAN; 4]; 4]);
+        let dx = contract(&ginv, p);
+        let dp = std::array::from_fn(|a| 0.5 * quadratic(&dg[a], &dx, &dx));
+        (dx, dp)
+    }
+
     fn length_scale(&self) -> f64 {
         self.0.length_scale()
     }
 
     fn inside_horizon(&self, x: &Vector4) -> bool {
         self.0.inside_horizon(x)
+    }
+
+    fn collapse_captures(&self) -> bool {
+        self.0.collapse_captures()
     }
 
     fn is_stationary(&self) -> bool {

@@ -180,7 +180,7 @@ mod tests {
         let black = || Sky::Constant(Rgb::ZERO);
         let materials = vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::ONE) }];
         let flat = Spacetime::Minkowski(spacetime::Minkowski);
-        let propagator = Propagator::new(flat, 1.0, 1e-7, crate::settings::Intersection::Chord);
+        let propagator = Propagator::new(flat.clone(), 1.0, 1e-7, crate::settings::Intersection::Chord);
         let split = |world: &World, visible| {
             RegionSplit::new(world, &Sources::new(world, &flat, &propagator), visible).unwrap()
         };
