@@ -16,8 +16,20 @@ pub fn cmf(lambda: f64) -> Xyz {
 }
 
 /// ∫ ȳ(λ) dλ over the table, in nm (about 106.86): the luminance of a spectrum equal to 1.
+/// Summed at compile time: the XYZ estimator divides by it once per sample.
+const Y_INTEGRAL: f64 = {
+    let mut sum = 0.0;
+    let mut i = 0;
+    while i < CMF_ROWS {
+        sum += CIE_1931_XYZ[i][1];
+        i += 1;
+    }
+    sum
+};
+
+/// [`Y_INTEGRAL`].
 pub fn y_integral() -> f64 {
-    CIE_1931_XYZ.iter().map(|row| row[1]).sum()
+    Y_INTEGRAL
 }
 
 /// XYZ of `spectrum` by quadrature at the table's 1 nm nodes, normalised by [`y_integral`]
