@@ -21,6 +21,7 @@ pub mod scene;
 pub mod settings;
 pub mod shape;
 pub mod sky;
+pub mod spectrum;
 #[cfg(test)]
 mod test_scenes;
 pub mod texture;

@@ -1,0 +1,111 @@
+//! Hero-wavelength sampling (Wilkie, Nawaz, Droske, Weidlich, Hanika 2014, "Hero Wavelength Spectral
+//! Sampling", EGSR): one hero wavelength per path from one sample u, and N − 1 companions at u + i/N
+//! (mod 1), a rotation that stratifies the N wavelengths over the range.
+
+use super::{LAMBDA_MAX, LAMBDA_MIN, N_WAVELENGTHS};
+
+/// Centre of the visible-importance density, in nm.
+const VISIBLE_CENTRE: f64 = 538.0;
+/// Inverse width of the visible-importance density, in 1/nm.
+const VISIBLE_RATE: f64 = 0.0072;
+
+/// The wavelengths a path carries (nm) and the density each was drawn with (1/nm).
+/// Invariant: every wavelength lies in [`LAMBDA_MIN`], [`LAMBDA_MAX`]; every pdf is positive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SampledWavelengths {
+    lambda: [f32; N_WAVELENGTHS],
+    pdf: [f32; N_WAVELENGTHS],
+}
+
+impl SampledWavelengths {
+    /// Uniform hero sampling: λ₀ = lerp(u, 360, 830), companions spaced by (830 − 360)/N and wrapped
+    /// into the range; each has pdf 1/(830 − 360). `u` in [0, 1).
+    pub fn sample_uniform(u: f32) -> Self {
+        let pdf = (1.0 / (LAMBDA_MAX - LAMBDA_MIN)) as f32;
+        Self {
+            lambda: std::array::from_fn(|i| {
+                let lambda = LAMBDA_MIN + rotated(u, i) * (LAMBDA_MAX - LAMBDA_MIN);
+                lambda as f32
+            }),
+            pdf: [pdf; N_WAVELENGTHS],
+        }
+    }
+
+    /// Visible-importance hero sampling (pbrt-v4's `SampleVisibleWavelengths`): each rotated sample
+    /// uᵢ = u + i/N (mod 1) is mapped through the inverse CDF of p(λ) ∝ 1/cosh²(a(λ − 538 nm)),
+    /// a = 0.0072/nm, on [360, 830] nm, a smooth bump over the luminous range. With
+    /// t(λ) = tanh(a(λ − 538)), the CDF is (t(λ) − t(360)) / (t(830) − t(360)).
+    pub fn sample_visible(u: f32) -> Self {
+        let lambda: [f32; N_WAVELENGTHS] = std::array::from_fn(|i| {
+            let (t_lo, t_hi) = visible_tanh_bounds();
+            let t = t_lo + rotated(u, i) * (t_hi - t_lo);
+            let lambda = VISIBLE_CENTRE + t.atanh() / VISIBLE_RATE;
+            lambda.clamp(LAMBDA_MIN, LAMBDA_MAX) as f32
+        });
+        Self { lambda, pdf: lambda.map(|l| visible_pdf(f64::from(l)) as f32) }
+    }
+
+    /// Wavelength `i` in nm (0 is the hero).
+    pub fn lambda(&self, i: usize) -> f32 {
+        self.lambda[i]
+    }
+
+    /// The density wavelength `i` was drawn with, in 1/nm.
+    pub fn pdf(&self, i: usize) -> f32 {
+        self.pdf[i]
+    }
+}
+
+/// The i-th rotation of `u`, u + i/N mod 1, in f64 so that the wrap is exact.
+fn rotated(u: f32, i: usize) -> f64 {
+    (f64::from(u) + i as f64 / N_WAVELENGTHS as f64).fract()
+}
+
+/// tanh(a(λ − 538)) at the two ends of the range.
+fn visible_tanh_bounds() -> (f64, f64) {
+    let t = |l: f64| (VISIBLE_RATE * (l - VISIBLE_CENTRE)).tanh();
+    (t(LAMBDA_MIN), t(LAMBDA_MAX))
+}
+
+/// The visible-importance density at `lambda`: a / (cosh²(a(λ − 538)) (t(830) − t(360))).
+fn visible_pdf(lambda: f64) -> f64 {
+    let (t_lo, t_hi) = visible_tanh_bounds();
+    let c = (VISIBLE_RATE * (lambda - VISIBLE_CENTRE)).cosh();
+    VISIBLE_RATE / (c * c * (t_hi - t_lo))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_companions_are_stratified_over_the_range() {
+        let stride = ((LAMBDA_MAX - LAMBDA_MIN) / N_WAVELENGTHS as f64) as f32;
+        for k in 0..100 {
+            let w = SampledWavelengths::sample_uniform(k as f32 / 100.0);
+            let mut l = w.lambda;
+            l.sort_by(f32::total_cmp);
+            assert!(l[0] >= LAMBDA_MIN as f32 && l[0] < (LAMBDA_MIN as f32 + stride + 1e-3));
+            for pair in l.windows(2) {
+                // Exactly one wavelength in each of the N strata: sorted neighbours one stride apart.
+                assert!((pair[1] - pair[0] - stride).abs() < 1e-3, "{l:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn visible_pdf_integrates_to_one_and_matches_the_sampler() {
+        let n = 47_000;
+        let h = (LAMBDA_MAX - LAMBDA_MIN) / n as f64;
+        let total: f64 = (0..n).map(|i| visible_pdf(LAMBDA_MIN + (i as f64 + 0.5) * h) * h).sum();
+        assert!((total - 1.0).abs() < 1e-9, "∫p = {total}");
+        // The sampler inverts the CDF: the fraction of the range's probability below λ(u) is u.
+        for k in 0..50 {
+            let u = k as f32 / 50.0;
+            let l = f64::from(SampledWavelengths::sample_visible(u).lambda(0));
+            let m = ((l - LAMBDA_MIN) / h) as usize;
+            let cdf: f64 = (0..m).map(|i| visible_pdf(LAMBDA_MIN + (i as f64 + 0.5) * h) * h).sum();
+            assert!((cdf - f64::from(u)).abs() < 1e-3, "u {u}: cdf {cdf}");
+        }
+    }
+}
