@@ -20,6 +20,7 @@
 //! which in curved space differs from the world coordinate directions by the metric.
 
 mod aim;
+mod forwards;
 
 pub use aim::Aimed;
 
@@ -33,6 +34,7 @@ use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep
 use spacetime::geodesic::tangent_triangle::tangent_triangle;
 use spacetime::geodesic::{HamiltonianStep, HamiltonianTracer, Integrator, State, TraceSettings};
 use spacetime::metric::{LocalFrame, Metric, Tracers};
+use spacetime::tensor::Vector4;
 use spacetime::{Fate, Region, Spacetime, Tetrad, Visit};
 
 /// Where a traced ray ended.
@@ -539,11 +541,25 @@ impl Propagator {
         };
         let Ok(frame) = Tetrad::local_observer(metric, &x) else { return RayEnd::Captured };
         let p = frame.backward_momentum(&metric.metric(&x), self.to_chart(direction).to_array(), 1.0);
+        self.follow(metric, State { x, p }, &OwnChart(metric), world, region)
+    }
+
+    /// Follows the ray that starts at `start` in the chart of `traced`, which `chart` relates to
+    /// the spacetime's own, to its end. The escaped ray's energy at infinity, over its energy at
+    /// the start, is the conserved `p_t` of `start`: its local observer measures energy 1.
+    fn follow<M: Metric, C: TracedChart>(
+        &self,
+        traced: &M,
+        start: State,
+        chart: &C,
+        world: &World,
+        region: Region,
+    ) -> RayEnd {
         let mut arrival: Option<(ChordHit, State)> = None;
-        let trace = HamiltonianTracer::new(metric, State { x, p }, self.trace).run(|step: &HamiltonianStep| {
+        let trace = HamiltonianTracer::new(traced, start, self.trace).run(|step: &HamiltonianStep| {
             let knot = |theta: f64| {
-                let s = step.at(theta);
-                Knot { theta, at: self.to_world(Vec3::new(s.x[1], s.x[2], s.x[3])), tangent: None }
+                let at = chart.point(&step.at(theta).x);
+                Knot { theta, at: self.to_world(Vec3::from_array(at)), tangent: None }
             };
             let curved = CurvedStep { knot: &knot, motion: None, axis: None, leaves_origin: false };
             match self.curved(world, region, &curved, knot(0.0), knot(1.0)) {
@@ -557,22 +573,45 @@ impl Propagator {
         match trace.fate {
             Fate::Stopped => {
                 let Some((found, state)) = arrival else { return RayEnd::Failed };
-                let Ok(local) = Tetrad::local_observer(metric, &state.x) else { return RayEnd::Captured };
-                let (n, energy) = local.backward_direction(&state.p);
+                let Some((n, energy)) = chart.measure(&state) else { return RayEnd::Captured };
                 let hit = world.surface(region, found.object, &found.chord, found.t);
                 let ng_local = self.local_normal(region, hit.p, hit.ng);
                 let direction = from_chord_side(&hit, ng_local, found.chord.dir, self.to_world(Vec3::from_array(n)));
                 let (object, distance) = (found.object, found.t);
                 RayEnd::Hit(Arrival { region, object, hit, ng_local, direction, distance, energy, swept: None })
             }
-            // A static observer at infinity measures the conserved `p_t` of the backward ray.
+            // A static observer at infinity measures the conserved `p_t`.
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
-                let end = self.to_world(Vec3::new(trace.end.x[1], trace.end.x[2], trace.end.x[3]));
-                self.beyond(world, region, end, self.to_world(Vec3::from_array(direction)), false, p[0])
+                let end = self.to_world(Vec3::from_array(chart.point(&trace.end.x)));
+                self.beyond(world, region, end, self.to_world(Vec3::from_array(direction)), false, start.p[0])
             }
             Fate::Captured => RayEnd::Captured,
             Fate::Failed(_) => RayEnd::Failed,
         }
+    }
+}
+
+/// The chart a 4-D ray is traced in, as the scene sees it: the spacetime's own chart (whose
+/// spatial points, rotated by `to_chart`, are world points) or one mapped to it.
+trait TracedChart {
+    /// The spatial point of the spacetime's own chart at traced point `x`.
+    fn point(&self, x: &Vector4) -> [f64; 3];
+    /// The unit direction of travel and the energy (relative to the start's) that the local
+    /// observer at `state` measures; `None` where there is no local observer.
+    fn measure(&self, state: &State) -> Option<([f64; 3], f64)>;
+}
+
+/// A ray traced backwards in the spacetime's own chart.
+struct OwnChart<'m>(&'m dyn Metric);
+
+impl TracedChart for OwnChart<'_> {
+    fn point(&self, x: &Vector4) -> [f64; 3] {
+        [x[1], x[2], x[3]]
+    }
+
+    fn measure(&self, state: &State) -> Option<([f64; 3], f64)> {
+        let local = Tetrad::local_observer(self.0, &state.x).ok()?;
+        Some(local.backward_direction(&state.p))
     }
 }
 

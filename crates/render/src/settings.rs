@@ -14,7 +14,8 @@ pub enum IntegratorKind {
     /// Stochastic progressive photon mapping (Hachisuka & Jensen 2009): camera paths end at
     /// visible points, photons traced from the lights are gathered there. Consistent, and it finds
     /// small or distant lights (e.g. through a wormhole) that camera paths rarely hit. Needs a
-    /// time-symmetric spacetime (not Kerr), since photons follow geodesics forwards.
+    /// spacetime whose light can be followed forwards in time (every built-in one; not a
+    /// metric written in a scene file).
     Photon,
 }
 

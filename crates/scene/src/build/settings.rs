@@ -33,7 +33,8 @@ const MAX_DEPTH: u32 = 1024;
 /// The most photons per iteration accepted.
 const MAX_PHOTONS: u64 = 1 << 32;
 
-/// `[render]`, in a scene of `spacetime` (the photon integrator needs a time-symmetric one).
+/// `[render]`, in a scene of `spacetime` (the photon integrator needs one whose light can be
+/// followed forwards in time).
 pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<RenderSettings> {
     let d = RenderSettings::default();
     let integrator = match t.get("integrator") {
@@ -46,8 +47,8 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
     };
     if integrator == IntegratorKind::Photon && !photon::supports(spacetime) {
         return Err(t.loc("integrator").err(format!(
-            "\"photon\" traces light forwards, which needs a time-symmetric spacetime; {} is not \
-             (use \"path\" or \"brute-force\")",
+            "\"photon\" traces light forwards in time, and nothing says how light runs forwards in a \
+             spacetime of type \"{}\" (use \"path\" or \"brute-force\")",
             spacetime.name()
         )));
     }

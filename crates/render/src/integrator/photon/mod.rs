@@ -14,9 +14,10 @@
 //! traced in fixed chunks, each with the stream of (seed, chunk, iteration), and what they
 //! deposit is summed chunk by chunk in chunk order. The image does not depend on the threads.
 //!
-//! Photons follow geodesics forwards, which needs a spacetime whose light rays can be
-//! reversed: static and time-symmetric (Minkowski, Schwarzschild, Ellis; Kerr is not), as the
-//! spacetime answers ([`spacetime::metric::Capabilities::forwards`]).
+//! Photons follow geodesics forwards in time, which needs a spacetime that says how its light
+//! is followed so ([`spacetime::metric::Capabilities::forwards`]): every built-in one does
+//! (static ones are time-symmetric, spinning holes are traced through their spin-reversed
+//! twins); a metric written in a scene file does not.
 //!
 //! Statistics: `rays` counts every geodesic segment traced (camera, background and photon
 //! paths); the fates are those of the camera paths, which end at their visible points
@@ -44,6 +45,7 @@ use background::Background;
 use emit::{RegionSplit, Sources};
 use grid::{Grid, Sphere};
 use rayon::prelude::*;
+use spacetime::metric::Forwards;
 use spacetime::{Region, Spacetime};
 pub use state::SppmState;
 use std::path::Path;
@@ -62,7 +64,10 @@ const DEFAULT_RADIUS_FRACTION: f64 = 0.01;
 
 /// Whether photons can be traced forwards in `spacetime` (see the module documentation).
 pub fn supports(spacetime: &Spacetime) -> bool {
-    spacetime.capabilities().forwards() == spacetime::metric::Forwards::Reversed
+    match spacetime.capabilities().forwards() {
+        Forwards::Reversed | Forwards::SpinTwin(_) => true,
+        Forwards::Unsupported => false,
+    }
 }
 
 /// Photons an iteration of `scene`'s render: as set, or one per pixel.
@@ -97,7 +102,7 @@ impl<'s> PhotonRenderer<'s> {
     pub fn new(scene: &'s Scene, resume: Option<SppmResume>) -> Self {
         assert!(
             supports(&scene.spacetime),
-            "photon mapping needs a time-symmetric spacetime, not {:?}",
+            "photon mapping needs a spacetime whose light can be followed forwards, not {:?}",
             scene.spacetime
         );
         let (width, height) = (scene.settings.width, scene.settings.height);

@@ -41,7 +41,8 @@ pub(super) struct SkySource {
 impl SkySource {
     /// The sky `sky` of a region whose receivers lie in `target`; `None` for a black sky, or
     /// when the receivers are unbounded (an infinite plane) and no disk covers them (or the
-    /// spacetime bounds no impact parameters, which time-symmetric ones all do).
+    /// spacetime bounds no impact parameters, as about a spinning hole: the sky then lights the
+    /// scene through paths continued from the camera, see `background`).
     pub fn new(sky: &Sky, target: Option<Target>, propagator: &Propagator) -> Option<Self> {
         let target = target?;
         let distribution = SkyDistribution::new(sky);

@@ -1,12 +1,13 @@
 //! The photon pass: photons follow geodesics forwards from the lights, scatter by the BSDFs in
 //! the local static frames, and are gathered by the visible points whose spheres they land in.
 //!
-//! The spacetimes traced here are static and time-symmetric, so a photon leaving a point in a
-//! direction travels the spatial curve the propagator traces backwards from there. Between two
-//! static observers its power scales by `(ν_receiver / ν_emitter)²`: one factor for the energy of
-//! each photon, one for their arrival rate (time dilation). Together with the invariance of
-//! `ν² dA cos θ dω` (étendue in curved spacetime), this is the `ν⁴` radiance law the path tracer
-//! applies, so both estimate the same image.
+//! Photons are traced forwards in time ([`Propagator::trace_forward`]): in static spacetimes
+//! along the spatial curve the propagator traces backwards, about a spinning hole through its
+//! spin-reversed twin. Between two local observers a photon's power scales by
+//! `(ν_receiver / ν_emitter)²`: the radiance law `I/ν⁴` invariant, with the invariance of
+//! `ν² dA cos θ dω` (étendue in curved spacetime), gives `dΦ_r = (ν_r/ν_e)² dΦ_e` whatever the
+//! observers (for static ones: one factor for each photon's energy, one for their arrival rate).
+//! This is the law the path tracer applies, so both estimate the same image.
 
 use super::super::path::leave;
 use super::super::stats::PathStats;
@@ -47,7 +48,7 @@ impl PhotonPass<'_> {
         // `bounce` counts the scatterings before the current segment.
         for bounce in 0..self.max_depth {
             stats.rays += 1;
-            let RayEnd::Hit(arrival) = self.propagator.trace(self.world, region, origin, direction) else {
+            let RayEnd::Hit(arrival) = self.propagator.trace_forward(self.world, region, origin, direction) else {
                 return;
             };
             // Forward transport: `energy` is ν at the hit over ν at the start.
