@@ -6,7 +6,9 @@
 //!    render that builds what is built once per process (the connection solver's start tables,
 //!    ~0.1 s), which no render of a real size notices and a tiny one would be dominated by.
 //! 3. Brute force renders `budget` samples per pixel; the path integrator renders as many as fit
-//!    in the same time. Both use seeds other than the reference's.
+//!    in the same time, and so does photon mapping (as many iterations, of one photon per pixel)
+//!    where the spacetime supports it. All use seeds other than the reference's. Photon
+//!    mapping's error includes its bias, which shrinks with its gather radius.
 //! 4. The RMSE of each against the reference (over pixels and channels) is printed, less the
 //!    reference's own noise: its per-pixel variance is `E[(A − B)²]/4` for halves `A`, `B`, and
 //!    it inflates every squared error by that much. The ratio of the RMSEs is printed as
@@ -67,24 +69,31 @@ fn main() -> Result<(), String> {
     run(&scene, IntegratorKind::Path, 1, 1);
     let pilot_spp = (budget / 4).max(1);
     let (_, t_brute) = run(&scene, IntegratorKind::BruteForce, pilot_spp, 2000);
-    let (_, t_path) = run(&scene, IntegratorKind::Path, pilot_spp, 2000);
-    let path_spp = ((f64::from(budget) * t_brute / t_path).round() as u32).max(1);
-    println!("pilot at {pilot_spp} spp: brute force {t_brute:.2} s, path {t_path:.2} s (÷ {:.2})", t_path / t_brute);
+    let mut rivals = vec![("path", IntegratorKind::Path)];
+    if render::integrator::photon::supports(&scene.spacetime) {
+        rivals.push(("photon", IntegratorKind::Photon));
+    }
+    let mut runs = vec![("brute force", IntegratorKind::BruteForce, budget)];
+    for &(name, kind) in &rivals {
+        let (_, t) = run(&scene, kind, pilot_spp, 2000);
+        println!("pilot at {pilot_spp} spp: brute force {t_brute:.2} s, {name} {t:.2} s (÷ {:.2})", t / t_brute);
+        runs.push((name, kind, ((f64::from(budget) * t_brute / t).round() as u32).max(1)));
+    }
 
     println!("{:<12} {:>5} {:>9} {:>10} {:>10}", "integrator", "spp", "CPU s", "mean", "RMSE");
-    let (mut rmse, mut seconds_used) = (Vec::new(), Vec::new());
-    for (name, kind, spp) in
-        [("brute force", IntegratorKind::BruteForce, budget), ("path", IntegratorKind::Path, path_spp)]
-    {
+    let mut measured = Vec::new();
+    for (name, kind, spp) in runs {
         let (film, seconds) = run(&scene, kind, spp, 3000);
         let e = reference.rmse(&film);
         println!("{name:<12} {spp:>5} {seconds:>9.2} {:>10.5} {e:>10.5}", mean(&film));
-        rmse.push(e);
-        seconds_used.push(seconds);
+        measured.push((name, e, seconds));
     }
-    let ratio = rmse[0] / rmse[1];
-    let scaled = ratio * (seconds_used[0] / seconds_used[1]).sqrt();
-    println!("RMSE ratio brute force ÷ path at equal time: {ratio:.2} (scaled to equal CPU time: {scaled:.2})");
+    let (_, brute_rmse, brute_seconds) = measured[0];
+    for &(name, e, seconds) in &measured[1..] {
+        let ratio = brute_rmse / e;
+        let scaled = ratio * (brute_seconds / seconds).sqrt();
+        println!("RMSE ratio brute force ÷ {name} at equal time: {ratio:.2} (scaled to equal CPU time: {scaled:.2})");
+    }
     Ok(())
 }
 
