@@ -370,8 +370,15 @@ impl<'a> Table<'a> {
 
     /// The value of `key`, if given.
     pub fn get(&self, key: &str) -> Option<Node<'a>> {
-        debug_assert!(self.allowed.is_empty() || self.allowed.contains(&key), "{key} not in {:?}", self.allowed);
+        // The reader asks only for keys its table declares (a typo here would silently ignore
+        // what the user wrote): checked in every build, it costs a scan of a few names.
+        assert!(self.allows(key), "{key} not in {:?}", self.allowed);
         self.find(key)
+    }
+
+    /// Whether the table declares `key` (a table of no declared keys takes any).
+    pub fn allows(&self, key: &str) -> bool {
+        self.allowed.is_empty() || self.allowed.contains(&key)
     }
 
     /// The value of the first of `keys` (spellings of one field) that is given; an error if more

@@ -75,7 +75,7 @@ impl FilmTile {
 
     /// A tile that continues the given pixel sums (row-major over `bounds`).
     pub(crate) fn continuing(bounds: TileBounds, pixels: Vec<PixelSum>) -> Self {
-        debug_assert_eq!(pixels.len(), bounds.pixel_count());
+        assert_eq!(pixels.len(), bounds.pixel_count(), "pixel sums for a tile of another size");
         Self { bounds, pixels, nan_samples: 0 }
     }
 

@@ -118,7 +118,7 @@ impl Builder<'_> {
 /// An error for a field of table `t` that only another projection than `PROJECTIONS[kind]` reads.
 fn only_own_fields(t: &Table<'_>, kind: usize) -> Result<()> {
     for (i, (owner, fields, _)) in PROJECTIONS.iter().enumerate().filter(|(i, _)| *i != kind) {
-        if let Some(n) = fields.iter().find_map(|f| t.get(f)) {
+        if let Some(n) = fields.iter().filter(|f| t.allows(f)).find_map(|f| t.get(f)) {
             let what = if i == PERSPECTIVE {
                 " (field of view, depth of field and focus are a perspective lens's)"
             } else {

@@ -160,8 +160,10 @@ const SPACETIMES: &[(&str, &[&str], SpacetimeReader)] = &[
 /// `[spacetime]`: the metric, validated by the physics crate, and its symmetry axis in the world
 /// (a Kerr hole's spin axis; default `+y`, up).
 fn spacetime_section((kind, t): &(usize, Table<'_>)) -> Result<(Spacetime, Vec3)> {
-    let axis = t.or("axis", Vec3::Y, |n| n.direction())?;
-    Ok((SPACETIMES[*kind].2(t)?, axis))
+    let (_, keys, read) = SPACETIMES[*kind];
+    // Only the types that have an axis read one (the others reject the key as unknown).
+    let axis = if keys.contains(&"axis") { t.or("axis", Vec3::Y, |n| n.direction())? } else { Vec3::Y };
+    Ok((read(t)?, axis))
 }
 
 /// The types and keys of [`SPACETIMES`], as the reader checks a tagged table against them.

@@ -437,10 +437,13 @@ impl PlaneAxes {
 
 /// `(sin x, cos x)` for the small angles inside one step (`|x| ≤ 1`), by their Taylor series to
 /// degree 19 (truncation below 2·10⁻²⁰): much cheaper than libm's general `sin_cos`, which
-/// dominated the cost of placing points on curved steps.
+/// dominated the cost of placing points on curved steps. Larger angles, which no step sweeps,
+/// go to libm rather than lose accuracy.
 #[inline]
 fn sin_cos_small(x: f64) -> (f64, f64) {
-    debug_assert!(x.abs() <= 1.0 + 1e-12);
+    if !(x.abs() <= 1.0 + 1e-12) {
+        return x.sin_cos();
+    }
     /// (−1)ⁿ/(2n+1)! and (−1)ⁿ/(2n)!, n = 0…9.
     const SIN: [f64; 10] = [
         1.0,
