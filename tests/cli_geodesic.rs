@@ -38,6 +38,9 @@ fn every_fate_is_reported() {
     assert_eq!((rn("4.53").as_str(), rn("4.56").as_str()), ("captured", "escaped"));
     assert_eq!(fate(&["--spacetime", "ellis", "--throat", "1", "--impact", "0.5"]), "traversed");
     assert_eq!(fate(&["--spacetime", "minkowski", "--impact", "1"]), "escaped");
+    let wormhole =
+        |b: &str| fate(&["--spacetime", "wormhole", "--length", "0.5", "--lensing-width", "0.05", "--impact", b]);
+    assert_eq!((wormhole("0.9").as_str(), wormhole("1.5").as_str()), ("traversed", "escaped"));
     assert_eq!(
         fate(&["--spacetime", "schwarzschild", "--impact", "30", "--integrator", "rk4", "--inclination", "30"]),
         "escaped"
@@ -51,7 +54,8 @@ fn bad_arguments_fail_with_a_clear_message() {
         (&["geodesic", "--spacetime", "schwarzschild", "--mass", "-1", "--impact", "3"][..], "mass"),
         (&["geodesic", "--spacetime", "ellis", "--throat", "0", "--impact", "3"][..], "throat"),
         (&["geodesic", "--spacetime", "schwarzschild", "--impact", "nan"][..], "impact"),
-        (&["geodesic", "--spacetime", "wormhole", "--impact", "3"][..], "wormhole"),
+        (&["geodesic", "--spacetime", "wormhole", "--impact", "3"][..], "--lensing-width"),
+        (&["geodesic", "--spacetime", "wormhole", "--lensing-width", "0", "--impact", "3"][..], "lensing"),
         (&["geodesic", "--spacetime", "schwarzschild"][..], "--impact"),
         (&["geodesic", "--spacetime", "schwarzschild", "--impact", "3", "--rtol", "0"][..], "rtol"),
     ] {

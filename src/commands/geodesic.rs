@@ -12,6 +12,8 @@ pub enum SpacetimeKind {
     Ellis,
     ReissnerNordstrom,
     KerrNewman,
+    /// The wormhole of *Interstellar* (`--throat`, `--length`, `--lensing-width`).
+    Wormhole,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -35,9 +37,15 @@ pub struct Args {
     /// Charge Q, |Q| ≤ M (Reissner–Nordström, Kerr–Newman).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     charge: f64,
-    /// Throat radius b₀ (Ellis).
+    /// Throat radius b₀ (Ellis, wormhole).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     throat: f64,
+    /// Length of the wormhole's cylindrical throat (wormhole).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    length: f64,
+    /// Lensing width 𝒲 of the wormhole's mouths (wormhole; required there).
+    #[arg(long, allow_hyphen_values = true)]
+    lensing_width: Option<f64>,
     /// Impact parameter b, in the same units as M or b₀.
     #[arg(long, allow_hyphen_values = true)]
     impact: f64,
@@ -75,6 +83,10 @@ fn spacetime(args: &Args) -> Result<Spacetime, String> {
         SpacetimeKind::Ellis => Spacetime::ellis(args.throat),
         SpacetimeKind::ReissnerNordstrom => Spacetime::reissner_nordstrom(args.mass, args.charge),
         SpacetimeKind::KerrNewman => Spacetime::kerr_newman(args.mass, args.spin, args.charge),
+        SpacetimeKind::Wormhole => {
+            let width = args.lensing_width.ok_or("wormhole spacetime: --lensing-width is required")?;
+            Spacetime::wormhole(args.throat, args.length, width)
+        }
     };
     let name = args.spacetime.to_possible_value().map_or(String::new(), |v| v.get_name().to_owned());
     s.map_err(|e| format!("{name} spacetime: {e}"))

@@ -8,7 +8,7 @@
 
 use crate::geodesic::plane::{trace_plane, PlaneMetric, PlaneRay, PlaneStart};
 use crate::geodesic::{HamiltonianTracer, Integrator, State, TraceSettings, Visit};
-use crate::metric::{Metric, Spacetime};
+use crate::metric::{Metric, Spacetime, Tracers};
 use crate::tensor::{cross3, dot3, norm3, spatial};
 use crate::Fate;
 use std::f64::consts::PI;
@@ -33,15 +33,35 @@ pub fn settings(integrator: Integrator) -> TraceSettings {
 /// Scatters a ray of impact parameter `b` (in the equatorial plane tilted by `inclination_rad`
 /// about the incoming direction) off `spacetime`.
 pub fn scatter(spacetime: &Spacetime, b: f64, inclination_rad: f64, integrator: Integrator) -> Scattering {
-    match spacetime {
-        Spacetime::Minkowski(m) => in_plane(m, b, inclination_rad, integrator),
-        Spacetime::Schwarzschild(m) => in_plane(m, b, inclination_rad, integrator),
-        Spacetime::Ellis(m) => in_plane(m, b, inclination_rad, integrator),
-        Spacetime::ReissnerNordstrom(m) => in_plane(m, b, inclination_rad, integrator),
-        Spacetime::Wormhole(m) => in_plane(m, b, inclination_rad, integrator),
-        Spacetime::Kerr(m) => hamiltonian(m, b, inclination_rad, integrator),
-        Spacetime::KerrNewman(m) => hamiltonian(m, b, inclination_rad, integrator),
-        Spacetime::Written(m) => hamiltonian(m, b, inclination_rad, integrator),
+    spacetime.choose_tracer(Scatter { b, inclination_rad, integrator })
+}
+
+/// A scattering experiment, handed to the tracer the spacetime chooses.
+struct Scatter {
+    b: f64,
+    inclination_rad: f64,
+    integrator: Integrator,
+}
+
+impl Tracers for Scatter {
+    type Output = Scattering;
+
+    /// Flat space: the ray goes straight on, unbent.
+    fn straight(self) -> Scattering {
+        Scattering {
+            fate: Fate::Escaped { direction: [1.0, 0.0, 0.0] },
+            deflection_rad: 0.0,
+            steps: 0,
+            max_abs_hamiltonian: 0.0,
+        }
+    }
+
+    fn in_plane<M: PlaneMetric>(self, metric: &M) -> Scattering {
+        in_plane(metric, self.b, self.inclination_rad, self.integrator)
+    }
+
+    fn four_d<M: Metric>(self, metric: &M) -> Scattering {
+        hamiltonian(metric, self.b, self.inclination_rad, self.integrator)
     }
 }
 
