@@ -33,8 +33,7 @@ impl KerrNewman {
 
 impl KerrSchild for KerrNewman {
     fn fields(&self, x: &Vector4) -> KerrSchildPoint {
-        let (m2, q2, a2) = (2.0 * self.mass, self.charge * self.charge, self.spin * self.spin);
-        spheroidal_fields(self.spin, x, |r, r2, z| r2 * (r * m2 - q2) / (r2 * r2 + z * z * a2))
+        spheroidal_fields(self.mass, self.spin, self.charge, x)
     }
 
     fn mass(&self) -> f64 {
