@@ -295,6 +295,44 @@ pub fn kerr_newman_shadow(mass: f64, spin: f64, charge: f64, inclination: f64, n
         .collect()
 }
 
+/// Radius of the innermost stable prograde circular orbit of a Kerr hole of spin `0 ≤ a ≤ M`
+/// (Bardeen, Press & Teukolsky 1972, eq. 2.21): `r = M(3 + Z₂ − √((3 − Z₁)(3 + Z₁ + 2Z₂)))`,
+/// `Z₁ = 1 + ∛(1 − χ²)(∛(1 + χ) + ∛(1 − χ))`, `Z₂ = √(3χ² + Z₁²)`, `χ = a/M`.
+pub fn kerr_isco(mass: f64, spin: f64) -> f64 {
+    let chi = spin / mass;
+    let z1 = 1.0 + (1.0 - chi * chi).cbrt() * ((1.0 + chi).cbrt() + (1.0 - chi).cbrt());
+    let z2 = (3.0 * chi * chi + z1 * z1).sqrt();
+    mass * (3.0 + z2 - ((3.0 - z1) * (3.0 + z1 + 2.0 * z2)).sqrt())
+}
+
+/// Energy per unit rest mass of the prograde circular equatorial orbit of radius `r` about a
+/// Kerr hole of spin `0 ≤ a ≤ M` (Bardeen, Press & Teukolsky 1972, eq. 2.12):
+/// `E = (r^{3/2} − 2M r^{1/2} + a M^{1/2}) / (r^{3/4} √(r^{3/2} − 3M r^{1/2} + 2a M^{1/2}))`.
+pub fn kerr_orbit_energy(mass: f64, spin: f64, r: f64) -> f64 {
+    let (sr, sm) = (r.sqrt(), mass.sqrt());
+    (r * sr - 2.0 * mass * sr + spin * sm) / (r.powf(0.75) * (r * sr - 3.0 * mass * sr + 2.0 * spin * sm).sqrt())
+}
+
+/// Page & Thorne's (1974, eq. 15n) flux per face of a thin disk about a Kerr hole of spin
+/// `0 < a ≤ M`, per unit accretion rate, at Boyer–Lindquist radius `r` ≥ the ISCO: with
+/// `x = √(r/M)`, `x₀` its value at the ISCO, `a* = a/M` and `x₁,₂,₃ = 2 cos((arccos a* ∓ π)/3)`,
+/// `−2 cos(arccos(a*)/3)` the roots of `x³ − 3x + 2a* = 0`,
+/// `F = 3/(8πM²) · 1/(x⁴(x³ − 3x + 2a*)) · [x − x₀ − (3/2) a* ln(x/x₀)
+/// − Σᵢ 3(xᵢ − a*)²/(xᵢ Πⱼ≠ᵢ(xᵢ − xⱼ)) ln((x − xᵢ)/(x₀ − xᵢ))]`.
+pub fn page_thorne_kerr_flux(mass: f64, spin: f64, r: f64) -> f64 {
+    let chi = spin / mass;
+    let x = (r / mass).sqrt();
+    let x0 = (kerr_isco(mass, spin) / mass).sqrt();
+    let angle = chi.acos();
+    let roots = [2.0 * ((angle - PI) / 3.0).cos(), 2.0 * ((angle + PI) / 3.0).cos(), -2.0 * (angle / 3.0).cos()];
+    let mut bracket = x - x0 - 1.5 * chi * (x / x0).ln();
+    for (i, &xi) in roots.iter().enumerate() {
+        let others: f64 = roots.iter().enumerate().filter(|&(j, _)| j != i).map(|(_, &xj)| xi - xj).product();
+        bracket -= 3.0 * (xi - chi).powi(2) / (xi * others) * ((x - xi) / (x0 - xi)).ln();
+    }
+    3.0 / (8.0 * PI * mass * mass) * bracket / (x.powi(4) * (x.powi(3) - 3.0 * x + 2.0 * chi))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

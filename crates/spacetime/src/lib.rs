@@ -9,6 +9,7 @@
 //! photon it describes travels the other way. Nothing here knows about rendering.
 
 pub mod analytic;
+pub mod disk;
 pub mod fan;
 pub mod geodesic;
 pub mod metric;

@@ -9,6 +9,7 @@
 
 use super::spin_twin::SpinTwin;
 use super::{Metric, Region};
+use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
 use crate::observer::Tetrad;
@@ -154,6 +155,12 @@ pub trait Capabilities: Metric {
     /// The solver joining two points by light rays, where there is one (it owns tables: build
     /// it once per render).
     fn light_connector(&self) -> Option<Connector>;
+
+    /// The prograde circular geodesics of the equatorial plane (z = 0 of the chart's axes) that
+    /// a thin accretion disk's gas follows, where the spacetime is a hole of Kerr's family;
+    /// `None` where it has none a disk could be built on (flat space, wormholes, metrics whose
+    /// orbits nothing here can find).
+    fn circular_orbits(&self) -> Option<CircularOrbits>;
 
     /// Calls the tracer of `tracers` that fits this metric.
     fn choose_tracer<T: Tracers>(&self, tracers: T) -> T::Output

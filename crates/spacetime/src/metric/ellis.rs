@@ -13,6 +13,7 @@
 
 use super::capabilities::{radial_frame, rest_on_chart, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region, WorldPoint};
+use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{normalize3, Covector4, Matrix4, Vector4};
@@ -252,6 +253,11 @@ impl Capabilities for Ellis {
     }
 
     fn light_connector(&self) -> Option<Connector> {
+        None
+    }
+
+    /// No hole, no orbits for a disk.
+    fn circular_orbits(&self) -> Option<CircularOrbits> {
         None
     }
 

@@ -14,6 +14,7 @@ use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::spin_twin::SpinTwin;
 use super::user::Scalar;
 use super::{Metric, Region};
+use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::observer::Tetrad;
 use crate::tensor::Vector4;
@@ -149,6 +150,10 @@ impl Capabilities for Kerr {
 
     fn light_connector(&self) -> Option<Connector> {
         None
+    }
+
+    fn circular_orbits(&self) -> Option<CircularOrbits> {
+        (self.mass > 0.0).then(|| CircularOrbits::new(self.mass, self.spin, 0.0))
     }
 
     fn choose_tracer<T: Tracers>(&self, tracers: T) -> T::Output {

@@ -14,6 +14,7 @@ use super::kerr::{spheroidal, spheroidal_fields, spinning_rest};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::spin_twin::SpinTwin;
 use super::Region;
+use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::tensor::Vector4;
 
@@ -94,6 +95,10 @@ impl Capabilities for KerrNewman {
 
     fn light_connector(&self) -> Option<Connector> {
         None
+    }
+
+    fn circular_orbits(&self) -> Option<CircularOrbits> {
+        (self.mass > 0.0).then(|| CircularOrbits::new(self.mass, self.spin, self.charge))
     }
 
     fn choose_tracer<T: Tracers>(&self, tracers: T) -> T::Output {

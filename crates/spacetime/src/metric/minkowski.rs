@@ -2,6 +2,7 @@
 
 use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region};
+use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{Covector4, Matrix4, Vector4, ETA};
@@ -122,6 +123,11 @@ impl Capabilities for Minkowski {
     }
 
     fn light_connector(&self) -> Option<Connector> {
+        None
+    }
+
+    /// No hole, no orbits for a disk.
+    fn circular_orbits(&self) -> Option<CircularOrbits> {
         None
     }
 

@@ -15,6 +15,7 @@ use super::capabilities::{
 };
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
+use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{norm3, spatial, Vector4};
@@ -186,6 +187,10 @@ impl Capabilities for ReissnerNordstrom {
     /// [`Connector`] solves Schwarzschild's Binet equation only.
     fn light_connector(&self) -> Option<Connector> {
         None
+    }
+
+    fn circular_orbits(&self) -> Option<CircularOrbits> {
+        (self.mass > 0.0).then(|| CircularOrbits::new(self.mass, 0.0, self.charge))
     }
 
     fn choose_tracer<T: Tracers>(&self, tracers: T) -> T::Output {

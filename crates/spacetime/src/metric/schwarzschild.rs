@@ -9,6 +9,7 @@ use super::capabilities::{
 };
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
+use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{norm3, spatial, Vector4};
@@ -164,6 +165,10 @@ impl Capabilities for Schwarzschild {
 
     fn light_connector(&self) -> Option<Connector> {
         (self.mass > 0.0).then(|| Connector::new(*self))
+    }
+
+    fn circular_orbits(&self) -> Option<CircularOrbits> {
+        (self.mass > 0.0).then(|| CircularOrbits::new(self.mass, 0.0, 0.0))
     }
 
     fn choose_tracer<T: Tracers>(&self, tracers: T) -> T::Output {

@@ -38,6 +38,7 @@ use super::capabilities::{tetrad_frame, tetrad_lapse, Capabilities, Forwards, Lo
 use super::expression::{atan2, Expression};
 use super::user::{MetricFunction, Scalar, UserMetric};
 use super::{Metric, ParameterError, Region};
+use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::observer::Tetrad;
 use crate::tensor::{invert, Matrix4, Vector4};
@@ -322,6 +323,12 @@ impl Capabilities for UserMetric<WrittenMetric> {
     }
 
     fn light_connector(&self) -> Option<Connector> {
+        None
+    }
+
+    /// A written metric's orbits are not known in closed form, and nothing proves it
+    /// stationary and axisymmetric.
+    fn circular_orbits(&self) -> Option<CircularOrbits> {
         None
     }
 

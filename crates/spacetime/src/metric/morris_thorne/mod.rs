@@ -22,6 +22,7 @@ pub use dneg::Dneg;
 
 use super::capabilities::{radial_frame, rest_on_chart, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region, WorldPoint};
+use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{norm3, normalize3, Matrix4, Vector4};
@@ -408,6 +409,11 @@ impl<S: Shape> Capabilities for MorrisThorne<S> {
     }
 
     fn light_connector(&self) -> Option<Connector> {
+        None
+    }
+
+    /// No hole, no orbits for a disk.
+    fn circular_orbits(&self) -> Option<CircularOrbits> {
         None
     }
 
