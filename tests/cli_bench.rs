@@ -60,3 +60,16 @@ fn the_mesh_workload_reports_millions_of_triangles_and_writes_its_image() {
     assert!(image::open(&image).is_ok());
     std::fs::remove_file(&image).unwrap();
 }
+
+#[test]
+fn the_disk_workload_traces_one_ray_a_pixel() {
+    let out = nullpath(&["bench", "disk", "--size", "8", "--repeat", "1", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!((v["workload"].as_str(), v["spp"].as_u64(), v["max_depth"].as_u64()), (Some("disk"), Some(1), Some(0)));
+    for r in v["results"].as_array().unwrap() {
+        // 8 × 8 pixels, one camera ray each and no bounce.
+        assert_eq!((r["samples"].as_u64(), r["rays"].as_u64()), (Some(64), Some(64)));
+        assert!(r["rays_per_second"].as_f64().unwrap() > 0.0);
+    }
+}

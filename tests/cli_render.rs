@@ -124,3 +124,44 @@ fn interrupting_a_render_keeps_what_was_computed() {
     assert_eq!(img.dimensions(), (256, 256));
     assert!(img.as_raw().iter().any(|&v| v > 0.0));
 }
+
+#[test]
+fn data_channels_go_into_the_exr_beside_the_colour() {
+    // A disk about a Schwarzschild hole, face on from its axis: every ray through the disk meets
+    // it at the radius its pixel shows, and the ray through the centre falls into the hole.
+    let scene = temp("disk-data.toml");
+    std::fs::write(
+        &scene,
+        "[spacetime]\ntype = \"schwarzschild\"\nmass = 1\n\
+         [camera]\nposition = [0, 200, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, 1]\nfov = 8\n\
+         [render]\nwidth = 9\nheight = 9\nspp = 1\nmax_depth = 0\nchannels = [\"redshift\", \"fate\", \"disk_radius\"]\n\
+         [accretion_disk]\nouter_radius = 12\n",
+    )
+    .unwrap();
+    let out = temp("disk-data.exr");
+    let status = nullpath().args(["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--quiet"]).status();
+    assert!(status.unwrap().success());
+    let image = exr::prelude::read_all_flat_layers_from_file(&out).unwrap();
+    let channels = &image.layer_data[0].channel_data.list;
+    let named = |name: &str| {
+        let c = channels.iter().find(|c| c.name.to_string() == name).unwrap_or_else(|| panic!("no channel {name}"));
+        c.sample_data.values_as_f32().collect::<Vec<f32>>()
+    };
+    let (fate, redshift, radius) = (named("fate"), named("redshift"), named("disk_radius"));
+    let centre = 4 * 9 + 4;
+    assert_eq!(fate[centre], 4.0, "captured");
+    assert!(redshift[centre].is_nan() && radius[centre].is_nan());
+    // The corner rays miss the disk (r > 12 M there) and escape; the disk's pixels are emitters
+    // whose gas, moving across the line of sight, is seen redshifted (g < 1).
+    assert_eq!(fate[0], 2.0);
+    let on_disk: Vec<usize> = (0..81).filter(|&i| fate[i] == 1.0).collect();
+    assert!(on_disk.len() > 8, "{fate:?}");
+    for &i in &on_disk {
+        assert!((6.0..=12.0).contains(&radius[i]) && redshift[i] > 0.5 && redshift[i] < 1.0, "{i}: {radius:?}");
+    }
+    // A PNG cannot hold them: the command refuses before rendering.
+    let png = temp("disk-data.png");
+    let out = nullpath().args(["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap()]).output().unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("only an .exr image holds"));
+}

@@ -23,6 +23,11 @@ pub enum Workload {
     /// and twelve instances of another (256², 16 spp, depth 8): BVH build time, memory per
     /// triangle, rays/s.
     Mesh,
+    /// A thin accretion disk about a Kerr hole (a = 0.9 M) seen from 100 M at 80° from the spin
+    /// axis, as scenes/accretion-disk.toml but on a black sky: 512², one camera ray per pixel,
+    /// no bounce (the disk's own light): rays/s, to set beside kerrz and Gyoto
+    /// (bench/peers/disk.py).
+    Disk,
     /// The first frame `nullpath preview` shows of the default scene: its text parsed, the
     /// preview's low-resolution frame rendered at 1 spp on all cores and encoded as PNG.
     Preview,
@@ -31,6 +36,30 @@ pub enum Workload {
 /// The benchmark scenes, bundled with the binary so the benchmarks run anywhere.
 const CORNELL_SCENE: &str = include_str!("../../scenes/cornell-box.toml");
 const ROOM_SCENE: &str = include_str!("../../scenes/room-black-hole.toml");
+
+/// The disk workload: scenes/accretion-disk.toml's hole, camera and disk, on a black sky, at one
+/// sample per pixel with no bounce.
+const DISK_SCENE: &str = r#"
+[spacetime]
+type = "kerr"
+mass = 1.0
+spin = 0.9
+axis = [0, 1, 0]
+
+[camera]
+position = [0.0, 17.365, 98.481]
+look_at = [0.0, 0.0, 0.0]
+up = [0, 1, 0]
+fov = 28
+
+[render]
+spp = 1
+max_depth = 0
+
+[accretion_disk]
+outer_radius = 20.0
+temperature = 9000
+"#;
 
 #[derive(Parser, Debug)]
 pub struct Args {
@@ -101,6 +130,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         Workload::Room => room(args),
         Workload::Mesh => mesh_bench(args),
         Workload::Preview => preview_first_frame(args),
+        Workload::Disk => disk(args),
     }
 }
 
@@ -134,6 +164,21 @@ fn room(args: &Args) -> Result<(), String> {
             "curved ÷ flat time, all threads: {median:.2} (median of {} interleaved pairs: {pairs})",
             ratios.len()
         );
+    }
+    Ok(())
+}
+
+/// The accretion disk at `--size`² (default 512), one ray per pixel.
+fn disk(args: &Args) -> Result<(), String> {
+    let mut scene = scene::parse(DISK_SCENE, "bench disk", std::path::Path::new(".")).map_err(|e| e.to_string())?;
+    let size = args.size.unwrap_or(512);
+    (scene.settings.width, scene.settings.height) = (size, size);
+    let scene = [scene];
+    let ([rows], _) = in_turn(args, &scene)?;
+    if args.json {
+        println!("{}", report_json("disk", &scene[0], &rows));
+    } else {
+        report_text("disk", &scene[0], &rows);
     }
     Ok(())
 }

@@ -390,6 +390,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         return Err("--noise-target decides from the whole image, so it cannot be used with --part".to_owned().into());
     }
     check_path(&args.output, "output", args.part.is_some())?;
+    check_channels(args, &scene)?;
     check_path(&args.checkpoint_path(), "--checkpoint", true)?;
     if let Some(path) = &args.stats {
         check_stats_path(path)?;
@@ -406,6 +407,26 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         let renderer = Renderer::new(&scene, part, resume).map_err(|e| e.to_string())?;
         command.drive(&PathRender { renderer, goal })
     }
+}
+
+/// Data channels (`[render] channels`) go into the one EXR image of a whole render.
+fn check_channels(args: &Args, scene: &Scene) -> Result<(), String> {
+    if scene.settings.channels.is_empty() {
+        return Ok(());
+    }
+    if args.part.is_some() {
+        return Err("render.channels are written with the whole image; a --part is a checkpoint of its tiles, and \
+                    nullpath merge writes colour only: render the data channels of the whole image in one run"
+            .into());
+    }
+    let is_exr = args.output.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    if !is_exr {
+        return Err(format!(
+            "render.channels asks for data channels, which only an .exr image holds; the output is '{}'",
+            args.output.display()
+        ));
+    }
+    Ok(())
 }
 
 /// Photon mapping's iterations share every photon between all pixels, so a part of the image
@@ -460,7 +481,10 @@ impl Command<'_> {
             );
         }
         if args.part.is_none() {
-            render.write_image(&args.output, &self.scene.settings.tonemap, &metadata(&stats))?;
+            let channels = &self.scene.settings.channels;
+            let data = (!channels.is_empty())
+                .then(|| render::renderer::data_layer(self.scene, &render::renderer::propagator(self.scene), channels));
+            render.write_image(&args.output, &self.scene.settings.tonemap, &metadata(&stats), data.as_ref())?;
         } else {
             render.checkpoint(&args.output, &|_| metadata(&stats))?;
         }

@@ -293,7 +293,7 @@ mod tests {
         let ray = |c: Camera| c.ray([3, 4], [0.0; 2], [10, 10], [0.5; 2]).unwrap();
         let (a, b) = (ray(moving), ray(fixed));
         // Equal up to the finite-difference Jacobian of the world → chart map (~1e-11).
-        assert!((a.direction - b.direction).length() < 1e-9 && (a.weight / b.weight - 1.0).abs() < 1e-6);
+        assert!((a.direction - b.direction).length() < 1e-9 && (a.doppler / b.doppler - 1.0).abs() < 1e-6);
         let err = rig(Observer::FromPath { speed_of_light: 5.0 }).camera_at(0.5, &flat, Vec3::Y).unwrap_err();
         assert!(err.contains("t = 0.5") && err.contains("speed_of_light"), "{err}");
     }

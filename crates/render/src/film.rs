@@ -44,6 +44,7 @@
 //! ```
 
 mod checkpoint;
+mod data;
 mod filter;
 mod filter_sampler;
 pub mod noise;
@@ -56,13 +57,14 @@ pub use checkpoint::{
     read_checkpoint, read_state, write_checkpoint, write_state, Checkpoint, CheckpointError, PixelChannels, StateFile,
     STATE_PREFIX,
 };
+pub use data::{DataChannel, DataLayer, FirstMet, PixelData};
 pub use filter::{
     BlackmanHarrisFilter, BoxFilter, Filter, FilterError, FilterSample, GaussianFilter, MitchellFilter, TentFilter,
     MAX_FILTER_RADIUS, MITCHELL_RECOMMENDED_B_C,
 };
 pub use output::{
-    check_output_path, check_writable, read_metadata, write_image, ImageFormat, ImageWriteError, Metadata,
-    MetadataReadError, METADATA_PREFIX,
+    check_output_path, check_writable, read_metadata, write_image, write_image_with_data, ImageFormat, ImageWriteError,
+    Metadata, MetadataReadError, METADATA_PREFIX,
 };
 pub use tile::{FilmTile, TileBounds};
 pub use tonemap::{srgb_oetf, to_rgb8, Curve, ToneMap};

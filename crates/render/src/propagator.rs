@@ -158,6 +158,13 @@ impl Propagator {
         self
     }
 
+    /// Sets the chord tolerance ε to 10⁻⁴ of `radius` (the objects' extent) rather than of the
+    /// scene radius [`Propagator::new`] was given, which also encloses the camera.
+    pub fn with_chord_scale(mut self, radius: f64) -> Self {
+        self.epsilon = 1e-4 * radius.max(self.spacetime.length_scale());
+        self
+    }
+
     /// World vector `v` in the chart's axes.
     fn to_chart(&self, v: Vec3) -> Vec3 {
         self.to_chart.map_or(v, |q| q * v)
@@ -261,6 +268,27 @@ impl Propagator {
             }
             LocalFrame::None => self.to_world(self.to_chart(n)),
         }
+    }
+
+    /// The velocity (units of c, in the local frame at world point `p` of `region`) of matter
+    /// turning rigidly about the world unit vector `axis` through the centre at angular velocity
+    /// `omega` per unit coordinate time; `None` where no local observer exists or the motion is
+    /// not slower than light there.
+    pub fn orbital_velocity(&self, region: Region, p: Vec3, axis: Vec3, omega: f64) -> Option<Vec3> {
+        let dp_dt = omega * axis.cross(p);
+        let measured = spacetime::observer::local_velocity(
+            self.spacetime.metric(),
+            region,
+            self.to_chart(p).to_array(),
+            self.to_chart(dp_dt).to_array(),
+        )?;
+        measured.ok().map(|v| self.to_world(Vec3::from_array(v)))
+    }
+
+    /// The world direction of the spacetime's symmetry axis (a spinning hole's spin), where it
+    /// has one.
+    pub fn axis(&self) -> Option<Vec3> {
+        self.to_chart.map(|q| q.inverse() * Vec3::Z)
     }
 
     /// The local observer's frame at world point `p` of `region` ([`Capabilities::local_frame`]).

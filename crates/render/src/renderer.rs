@@ -15,6 +15,9 @@
 //! processes, and their films put together are the film of the whole render, bit for bit.
 
 mod adaptive;
+mod data;
+
+pub use data::data_layer;
 
 use crate::color::Rgb;
 use crate::film::{noise, Film, FilmTooLarge, TileBounds};
@@ -149,16 +152,18 @@ impl std::fmt::Display for Part {
     }
 }
 
-/// The propagator a scene needs; the escape radius encloses every object.
+/// The propagator a scene needs; the escape radius encloses every object and the camera, the
+/// chord tolerance is set by the objects (a camera far outside them, as for a disk seen from
+/// afar, does not coarsen the hits).
 pub fn propagator(scene: &Scene) -> Propagator {
     use spacetime::Region;
-    let radius = [Region::Upper, Region::Lower]
+    let objects = [Region::Upper, Region::Lower]
         .iter()
         .map(|&r| scene.world.bounds(r))
         .filter(|b| !b.is_empty())
         .map(|b| b.min.abs().max(b.max.abs()).length())
-        .chain([scene.camera.position.length()])
         .fold(0.0f64, f64::max);
+    let radius = objects.max(scene.camera.position.length());
     let propagator = Propagator::new(
         scene.spacetime.clone(),
         radius.max(1e-9),
@@ -166,6 +171,7 @@ pub fn propagator(scene: &Scene) -> Propagator {
         scene.settings.intersection,
     )
     .with_axis(scene.axis);
+    let propagator = if objects > 0.0 { propagator.with_chord_scale(objects) } else { propagator };
     match scene.settings.connector {
         Connector::Auto => propagator,
         Connector::Aimed => propagator.with_generic_connector(),
@@ -379,8 +385,8 @@ impl<'s> Renderer<'s> {
                 let size = [settings.width, settings.height];
                 let l = match scene.camera.ray([x, y], fs.offset, size, sampler.next_2d()) {
                     Some(ray) => {
-                        integrator.radiance(scene.camera.region, ray.origin, ray.direction, &mut sampler, &mut stats)
-                            * ray.weight
+                        let start = (scene.camera.region, ray.origin, ray.direction);
+                        integrator.radiance(start, ray.doppler, &mut sampler, &mut stats)
                     }
                     // Where the camera sees nothing (outside a fisheye's circle) the film is black.
                     None => Rgb::ZERO,

@@ -80,6 +80,8 @@ pub struct RenderSettings {
     /// across the scene then stays an order of magnitude below ε (tests/geodesic_tolerance.rs),
     /// while 1e-8 cost a third more time for no visible difference.
     pub geodesic_rtol: f64,
+    /// Data channels written beside the colour in EXR images ([`crate::film::DataChannel`]).
+    pub channels: Vec<crate::film::DataChannel>,
 }
 
 impl Default for RenderSettings {
@@ -97,6 +99,7 @@ impl Default for RenderSettings {
             filter: Filter::default(),
             tonemap: ToneMap::default(),
             geodesic_rtol: 1e-7,
+            channels: Vec::new(),
         }
     }
 }

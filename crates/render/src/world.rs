@@ -5,96 +5,18 @@
 //! each with its own objects, lights and sky (world coordinates of a region are its own).
 
 use crate::accel::Bvh;
-use crate::color::{luminance, Rgb};
 use crate::geometry::{Aabb, Ray, Vec3};
 use crate::material::Material;
 use crate::shape::{Shape, SurfaceHit};
 use crate::sky::Sky;
 use spacetime::Region;
 
+pub use crate::emission::{Emission, Profile, Radiance};
+
 /// A corner of a triangle lies on a surface when it is within this fraction of its coordinates'
 /// size of the surface's plane: rounding, far below the offset (`OFFSET_EPSILON`, 10⁻⁹ of the
 /// coordinates) that starts a ray off the surface it leaves.
 const ON_SURFACE: f64 = 1e-12;
-
-/// Light emitted by a surface: radiance on its outward side (both sides if `two_sided`),
-/// varying with direction as its [`Profile`] says.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Emission {
-    /// The radiance of a uniform emitter; for a spot, the radiant intensity along the axis per
-    /// unit area (see [`Profile::Spot`]).
-    pub radiance: Rgb,
-    pub two_sided: bool,
-    pub profile: Profile,
-}
-
-/// How emitted radiance varies with the angle `θ` from the surface normal.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Profile {
-    /// The same radiance in every direction: a Lambertian emitter.
-    Uniform,
-    /// A spot light's cone about the normal (glTF `KHR_lights_punctual`): radiant intensity
-    /// `radiance · area · s(cos θ)`, full inside the inner cone, none outside the outer, and
-    /// between them `s = ((cos θ − cos_outer)/(cos_inner − cos_outer))²`, the smooth falloff the
-    /// glTF specification recommends. The radiance is therefore `radiance · s / cos θ`.
-    Spot { cos_inner: f64, cos_outer: f64 },
-}
-
-impl Profile {
-    /// The spot's falloff `s(cos θ)` (1 for a uniform emitter).
-    fn falloff(self, cos: f64) -> f64 {
-        match self {
-            Profile::Uniform => 1.0,
-            Profile::Spot { cos_inner, cos_outer } if cos_inner > cos_outer => {
-                ((cos - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0).powi(2)
-            }
-            Profile::Spot { cos_outer, .. } => f64::from(u8::from(cos >= cos_outer)),
-        }
-    }
-}
-
-impl Emission {
-    /// Constant radiance in every direction of the outward side (both if `two_sided`).
-    pub fn uniform(radiance: Rgb, two_sided: bool) -> Self {
-        Self { radiance, two_sided, profile: Profile::Uniform }
-    }
-
-    /// Radiance leaving the surface with outward normal `ng` in direction `dir` (unit, in the
-    /// same frame as `ng`).
-    pub fn radiance_towards(&self, ng: Vec3, dir: Vec3) -> Rgb {
-        let cos = ng.dot(dir);
-        if !(self.two_sided || cos > 0.0) {
-            return Rgb::ZERO;
-        }
-        match self.profile {
-            Profile::Uniform => self.radiance,
-            Profile::Spot { .. } => {
-                let cos = cos.abs();
-                let s = self.profile.falloff(cos);
-                if s > 0.0 && cos > 0.0 {
-                    self.radiance * (s / cos) as f32
-                } else {
-                    Rgb::ZERO
-                }
-            }
-        }
-    }
-
-    /// The luminance of the exitance per unit area over π, `∫ L cos θ dω / π`: a light's power
-    /// per area, for choosing lights in proportion to it.
-    pub fn exitance_luminance(&self) -> f64 {
-        let sides = if self.two_sided { 2.0 } else { 1.0 };
-        // ∫ L cos θ dω = radiance · 2π ∫₀¹ s(c) dc for a spot; π · radiance for a uniform emitter.
-        let shape = match self.profile {
-            Profile::Uniform => 1.0,
-            Profile::Spot { cos_inner, cos_outer } => {
-                let (inner, outer) = (cos_inner.clamp(0.0, 1.0), cos_outer.clamp(0.0, 1.0));
-                2.0 * ((inner - outer).max(0.0) / 3.0 + (1.0 - inner.max(outer)))
-            }
-        };
-        f64::from(luminance(self.radiance)) * sides * shape
-    }
-}
 
 /// One object of the scene.
 #[derive(Clone, Debug)]
@@ -137,7 +59,7 @@ impl RegionScene {
         let mut light_cdf = Vec::new();
         let mut total = 0.0;
         for (i, o) in objects.iter().enumerate() {
-            if let Some(e) = o.emission {
+            if let Some(e) = &o.emission {
                 let area = o.shape.area();
                 let power = e.exitance_luminance() * area;
                 if area.is_finite() && power > 0.0 {
@@ -428,42 +350,9 @@ impl World {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::color::Rgb;
     use crate::texture::Texture;
     use crate::transform::Transform;
-
-    #[test]
-    fn a_spot_emits_its_intensity_in_its_cone_and_its_exitance_integrates() {
-        let (inner, outer) = (20f64.to_radians(), 35f64.to_radians());
-        let spot = Emission {
-            radiance: Rgb::splat(2.0),
-            two_sided: false,
-            profile: Profile::Spot { cos_inner: inner.cos(), cos_outer: outer.cos() },
-        };
-        let intensity = |theta: f64| {
-            let dir = Vec3::new(theta.sin(), 0.0, theta.cos());
-            f64::from(spot.radiance_towards(Vec3::Z, dir).x) * theta.cos()
-        };
-        // L·cos θ per unit area is the intensity: 2 inside the inner cone, 0 outside the outer.
-        assert!((intensity(0.0) - 2.0).abs() < 1e-6 && (intensity(19f64.to_radians()) - 2.0).abs() < 1e-6);
-        assert_eq!(intensity(36f64.to_radians()), 0.0);
-        let mid = 27.5f64.to_radians();
-        let s = ((mid.cos() - outer.cos()) / (inner.cos() - outer.cos())).powi(2);
-        assert!((intensity(mid) - 2.0 * s).abs() < 1e-6, "{} against {}", intensity(mid), 2.0 * s);
-        assert_eq!(spot.radiance_towards(Vec3::Z, -Vec3::Z), Rgb::ZERO, "one-sided");
-        // ∫ L cos θ dω / π by the midpoint rule over θ.
-        let n = 20_000;
-        let h = std::f64::consts::FRAC_PI_2 / n as f64;
-        let integral: f64 = (0..n)
-            .map(|i| {
-                let theta = (i as f64 + 0.5) * h;
-                intensity(theta) * 2.0 * std::f64::consts::PI * theta.sin() * h
-            })
-            .sum::<f64>()
-            / std::f64::consts::PI;
-        let expected = spot.exitance_luminance();
-        assert!((integral / expected - 1.0).abs() < 1e-4, "{integral} against {expected}");
-        assert_eq!(Emission::uniform(Rgb::ONE, true).exitance_luminance(), 2.0);
-    }
 
     fn world_with_two_lights() -> World {
         let t = Transform::identity();

@@ -3,7 +3,7 @@
 //! stopped within a sample (a photon chunk), checkpointed while they run, and continued from a
 //! checkpoint bit-identically.
 
-use render::film::{write_checkpoint, write_image, Metadata, ToneMap};
+use render::film::{write_checkpoint, write_image_with_data, DataLayer, Metadata, ToneMap};
 use render::integrator::photon::PhotonRenderer;
 use render::renderer::{Goal, RenderStats, Renderer};
 use std::path::Path;
@@ -18,8 +18,14 @@ pub trait Progressive: Sync {
     /// meanwhile), with the metadata made from its statistics.
     fn checkpoint(&self, path: &Path, metadata: &dyn Fn(&RenderStats) -> Metadata) -> Result<(), String>;
 
-    /// Writes the image as it stands to `path`.
-    fn write_image(&self, path: &Path, tonemap: &ToneMap, metadata: &Metadata) -> Result<(), String>;
+    /// Writes the image as it stands to `path`, with the data channels `data`.
+    fn write_image(
+        &self,
+        path: &Path,
+        tonemap: &ToneMap,
+        metadata: &Metadata,
+        data: Option<&DataLayer>,
+    ) -> Result<(), String>;
 }
 
 /// The path tracer's render to a goal.
@@ -38,8 +44,14 @@ impl Progressive for PathRender<'_> {
         write_checkpoint(path, &film, &targets, &metadata(&stats)).map_err(|e| format!("checkpoint: {e}"))
     }
 
-    fn write_image(&self, path: &Path, tonemap: &ToneMap, metadata: &Metadata) -> Result<(), String> {
-        write_image(&self.renderer.snapshot().0, path, tonemap, metadata).map_err(|e| e.to_string())
+    fn write_image(
+        &self,
+        path: &Path,
+        tonemap: &ToneMap,
+        metadata: &Metadata,
+        data: Option<&DataLayer>,
+    ) -> Result<(), String> {
+        write_image_with_data(&self.renderer.snapshot().0, data, path, tonemap, metadata).map_err(|e| e.to_string())
     }
 }
 
@@ -53,7 +65,13 @@ impl Progressive for PhotonRenderer<'_> {
         self.write_checkpoint(path, &state, &metadata(&stats)).map_err(|e| format!("checkpoint: {e}"))
     }
 
-    fn write_image(&self, path: &Path, tonemap: &ToneMap, metadata: &Metadata) -> Result<(), String> {
-        write_image(&self.film(&self.snapshot().0), path, tonemap, metadata).map_err(|e| e.to_string())
+    fn write_image(
+        &self,
+        path: &Path,
+        tonemap: &ToneMap,
+        metadata: &Metadata,
+        data: Option<&DataLayer>,
+    ) -> Result<(), String> {
+        write_image_with_data(&self.film(&self.snapshot().0), data, path, tonemap, metadata).map_err(|e| e.to_string())
     }
 }

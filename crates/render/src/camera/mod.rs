@@ -78,10 +78,17 @@ struct Motion {
 pub struct CameraRay {
     pub origin: Vec3,
     pub direction: Vec3,
-    /// `D⁴` with `D = ν_camera / ν_static` the Doppler factor (`I_ν/ν³` is invariant, so
-    /// frequency-integrated radiance scales as `ν⁴`); 1 for a camera at rest. Colours are not
-    /// shifted: RGB has no spectrum to shift, so only the brightness changes.
-    pub weight: f32,
+    /// The Doppler factor `D = ν_camera / ν_static` the camera sees light arriving along the
+    /// ray with; 1 for a camera at rest.
+    pub doppler: f64,
+}
+
+impl CameraRay {
+    /// `D⁴`: frequency-integrated radiance scales as `ν⁴` (`I_ν/ν³` is invariant), the factor
+    /// for renderers that carry RGB light with its brightness shifted alone.
+    pub fn weight(&self) -> f32 {
+        self.doppler.powi(4) as f32
+    }
 }
 
 impl Projection {
@@ -171,13 +178,13 @@ impl Camera {
         };
         let (origin, direction) = self.projection.ray(self.position, &self.axes, film, lens_u)?;
         Some(match &self.motion {
-            None => CameraRay { origin, direction, weight: 1.0 },
+            None => CameraRay { origin, direction, doppler: 1.0 },
             Some(m) => {
                 // The backward ray of unit energy in the camera's frame, seen by the static
                 // observer: direction (aberration) and energy E = ν_static/ν_camera.
                 let p = m.moving.backward_momentum(&ETA, direction.to_array(), 1.0);
                 let (n, energy) = m.rest.backward_direction(&p);
-                CameraRay { origin, direction: Vec3::from_array(n), weight: energy.powi(-4) as f32 }
+                CameraRay { origin, direction: Vec3::from_array(n), doppler: 1.0 / energy }
             }
         })
     }
@@ -251,10 +258,10 @@ mod tests {
             let gamma = 1.0 / (1.0 - v * v).sqrt();
             let d = gamma * (1.0 + v * cos_static);
             assert!((d * gamma * (1.0 - v * cos_seen) - 1.0).abs() < 1e-12);
-            assert!((f64::from(r.weight) / d.powi(4) - 1.0).abs() < 1e-6);
+            assert!((f64::from(r.weight()) / d.powi(4) - 1.0).abs() < 1e-6);
         }
         let still = ray_at(&c.with_velocity(Vec3::ZERO).unwrap(), 10.0, 20.0, [100, 100], [0.5, 0.5]).unwrap();
-        assert_eq!(still.weight, 1.0);
+        assert_eq!(still.weight(), 1.0);
         assert!(c.with_velocity(Vec3::new(0.6, 0.8, 0.0)).is_err(), "speed of light");
     }
 
@@ -279,7 +286,7 @@ mod tests {
                 assert!(((cos_static + v) / (1.0 + v * cos_static) - cos_seen).abs() < 1e-12, "{projection:?}");
                 assert_eq!(r.origin, seen.origin, "{projection:?}");
                 let d = (1.0 + v * cos_static) / (1.0 - v * v).sqrt();
-                assert!((f64::from(r.weight) / d.powi(4) - 1.0).abs() < 1e-6, "{projection:?}");
+                assert!((f64::from(r.weight()) / d.powi(4) - 1.0).abs() < 1e-6, "{projection:?}");
             }
         }
     }

@@ -23,6 +23,7 @@ use std::path::{Path, PathBuf};
 
 use image::codecs::hdr::HdrEncoder;
 
+use super::data::DataLayer;
 use super::{to_rgb8, Film, ToneMap};
 
 /// Text about an image, key to value (keys without [`METADATA_PREFIX`]).
@@ -81,6 +82,8 @@ pub enum ImageWriteError {
     Io { path: PathBuf, source: std::io::Error },
     /// The encoder failed.
     Encode { path: PathBuf, format: ImageFormat, source: Box<dyn std::error::Error + Send + Sync> },
+    /// Data channels were asked for in a format that cannot hold them (only EXR can).
+    DataNeedsExr { path: PathBuf },
 }
 
 impl fmt::Display for ImageWriteError {
@@ -111,6 +114,11 @@ impl fmt::Display for ImageWriteError {
             Self::Encode { path, format, source } => {
                 write!(f, "cannot write image '{}' as {format}: {source}", path.display())
             }
+            Self::DataNeedsExr { path } => write!(
+                f,
+                "cannot write image '{}' with data channels (render.channels): only an .exr file holds them",
+                path.display()
+            ),
         }
     }
 }
@@ -156,14 +164,28 @@ pub fn check_writable(path: &Path) -> Result<(), ImageWriteError> {
 /// Writes `film` to `path` in the format its extension names (see the module docs), with
 /// `metadata`; `tonemap`'s curve applies to PNG only, its exposure to every format.
 pub fn write_image(film: &Film, path: &Path, tonemap: &ToneMap, metadata: &Metadata) -> Result<(), ImageWriteError> {
+    write_image_with_data(film, None, path, tonemap, metadata)
+}
+
+/// [`write_image`] with the data channels `data` beside the colour (EXR only).
+pub fn write_image_with_data(
+    film: &Film,
+    data: Option<&DataLayer>,
+    path: &Path,
+    tonemap: &ToneMap,
+    metadata: &Metadata,
+) -> Result<(), ImageWriteError> {
     let format = check_output_path(path)?;
+    if data.is_some() && format != ImageFormat::Exr {
+        return Err(ImageWriteError::DataNeedsExr { path: path.to_owned() });
+    }
     if film.width() == 0 || film.height() == 0 {
         return Err(ImageWriteError::EmptyImage { path: path.to_owned() });
     }
     if !tonemap.exposure_ev.is_finite() {
         return Err(ImageWriteError::InvalidExposure { path: path.to_owned(), exposure_ev: tonemap.exposure_ev });
     }
-    write_atomically(path, |temporary| write_to(film, temporary, format, tonemap, metadata))
+    write_atomically(path, |temporary| write_to((film, data), temporary, format, tonemap, metadata))
 }
 
 /// Runs `write` on a temporary sibling of `path` and renames it into place; on failure the
@@ -238,7 +260,7 @@ fn remove_stale_temporaries(path: &Path) {
 }
 
 fn write_to(
-    film: &Film,
+    (film, data): (&Film, Option<&DataLayer>),
     path: &Path,
     format: ImageFormat,
     tonemap: &ToneMap,
@@ -268,6 +290,25 @@ fn write_to(
                 .write_header()
                 .and_then(|mut w| w.write_image_data(&bytes).and_then(|()| w.finish()))
                 .map_err(|e| encode_error(Box::new(e)))?;
+        }
+        ImageFormat::Exr if data.is_some() => {
+            use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Image, WritableImage as _};
+            let colour: [Vec<f32>; 3] = std::array::from_fn(|c| {
+                film.bounds().pixels().map(|(x, y)| (film.pixel_f64(x, y)[c] * scale) as f32).collect()
+            });
+            let [r, g, b] = colour.map(FlatSamples::F32);
+            let mut channels: Vec<AnyChannel<FlatSamples>> =
+                vec![AnyChannel::new("R", r), AnyChannel::new("G", g), AnyChannel::new("B", b)];
+            for layer in data.into_iter() {
+                for &channel in &layer.channels {
+                    channels.push(AnyChannel::new(channel.name(), FlatSamples::F32(layer.samples(channel))));
+                }
+            }
+            let size = (width as usize, height as usize);
+            let mut image = Image::from_channels(size, AnyChannels::sort(channels.into()));
+            image.layer_data.encoding = Encoding::SMALL_LOSSLESS;
+            image.layer_data.attributes.other.extend(exr_attributes(metadata));
+            image.write().to_buffered(&mut writer).map_err(|e| encode_error(Box::new(e)))?;
         }
         ImageFormat::Exr => {
             use exr::prelude::{Encoding, Image, SpecificChannels, Vec2, WritableImage as _};

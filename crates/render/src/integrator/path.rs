@@ -1,9 +1,12 @@
 //! Unidirectional path tracing with Russian roulette (Kajiya 1986; pbrt-v4 §13.4).
 //!
 //! Every segment is a null geodesic found by the [`Propagator`], and every vertex works in the
-//! local orthonormal frame of the observer at the hit. Along a segment, radiance scales with the
-//! fourth power of the frequency shift between the observers at its ends (`I_ν/ν³` is invariant;
-//! integrated over frequency, `I ∝ ν⁴`), which accounts for gravitational red- and blueshift.
+//! local orthonormal frame of the observer at the hit. A path carries, besides its throughput,
+//! the frequency ratio `g = ν_camera / ν_local` between the camera and the local observer at its
+//! vertex: the product of the camera's Doppler factor and the shifts between the observers at the
+//! ends of its segments (gravitational red- and blueshift). Emitters are asked for their light
+//! as seen at that ratio ([`Emission::seen`](crate::emission::Emission::seen)): a blackbody
+//! changes colour, an RGB colour brightens as `g⁴` (`I_ν/ν³` is invariant).
 //!
 //! Direct light is also sampled on the emitters and combined with BSDF sampling by multiple
 //! importance sampling (Veach 1997, power heuristic), by whichever strategy joins light points to
@@ -12,6 +15,7 @@
 use super::light::{Bounce, LightSampling, Lit, Shading};
 use super::stats::PathStats;
 use crate::color::Rgb;
+use crate::emission::Seen;
 use crate::geometry::{Frame, Vec3};
 use crate::propagator::{Arrival, Propagator, RayEnd};
 use crate::sampling::Sampler;
@@ -37,12 +41,12 @@ impl<'a> PathIntegrator<'a> {
     }
 
     /// Radiance arriving at `origin` (in `region`) from the local-frame direction `direction`
-    /// (the direction the backward ray leaves in).
+    /// (the direction the backward ray leaves in), seen by a camera that measures frequencies
+    /// `doppler` times the local observer's there.
     pub fn radiance(
         &self,
-        region: Region,
-        origin: Vec3,
-        direction: Vec3,
+        (region, origin, direction): (Region, Vec3, Vec3),
+        doppler: f64,
         sampler: &mut Sampler,
         stats: &mut PathStats,
     ) -> Rgb {
@@ -51,22 +55,24 @@ impl<'a> PathIntegrator<'a> {
         // Product of η² over refractions: undoes the radiance scaling for the roulette decision,
         // so a path through clear glass is never killed for having entered it (pbrt-v4 §13.4.4).
         let mut eta_scale = 1.0f64;
+        let mut g = doppler;
         let (mut region, mut origin, mut direction) = (region, origin, direction);
         let mut bounce = Bounce { pdf: 0.0, specular: true, from: origin, direction };
         let mut depth = 0;
         loop {
             stats.rays += 1;
-            let arrival =
-                match segment_end(self.world, self.propagator.trace(self.world, region, origin, direction), stats) {
-                    SegmentEnd::Surface(a) => a,
-                    SegmentEnd::Sky(sky) => return radiance + beta * sky,
-                };
-            beta *= shift(arrival.energy);
+            let end = self.propagator.trace(self.world, region, origin, direction);
+            let arrival = match segment_end(self.world, end, g, stats) {
+                SegmentEnd::Surface(a) => a,
+                SegmentEnd::Sky(sky) => return radiance + beta * sky,
+            };
+            g /= arrival.energy;
             let object = self.world.object(arrival.region, arrival.object);
             let hit = &arrival.hit;
             let ng = arrival.ng_local;
-            if let Some(emission) = object.emission {
-                let le = emission.radiance_towards(ng, -arrival.direction);
+            if let Some(emission) = &object.emission {
+                let seen = Seen { region: arrival.region, point: hit.p, g, propagator: self.propagator };
+                let le = emission.seen(ng, -arrival.direction, &seen);
                 if le != Rgb::ZERO {
                     let weight = self.light_sampling.emitter_weight(self.lit(), &arrival, ng, &bounce);
                     radiance += beta * le * weight as f32;
@@ -83,7 +89,7 @@ impl<'a> PathIntegrator<'a> {
             let frame = Frame::from_normal(ns);
             let wo = frame.to_local(-arrival.direction);
             if !bsdf.is_delta() {
-                let shading = Shading { bsdf: &bsdf, frame: &frame, wo, ng };
+                let shading = Shading { bsdf: &bsdf, frame: &frame, wo, ng, g };
                 radiance += beta * self.light_sampling.direct(self.lit(), &arrival, &shading, sampler, stats);
             }
             let Some(sample) = bsdf.sample(wo, sampler.next_f64(), sampler.next_2d()) else {
@@ -96,7 +102,9 @@ impl<'a> PathIntegrator<'a> {
                 return radiance;
             }
             eta_scale *= sample.eta * sample.eta;
-            let rr_beta = f64::from(beta.max_element()) * eta_scale;
+            // What the path can still bring the camera scales with g⁴ as well (the brightness
+            // of light seen at ratio g), so paths into redshifted depths are cut as before.
+            let rr_beta = f64::from(beta.max_element()) * eta_scale * g.powi(4);
             if depth >= ROULETTE_START && rr_beta < 1.0 {
                 // Survive with probability equal to the throughput: paths that still carry
                 // everything are never cut.
@@ -126,8 +134,9 @@ pub(super) enum SegmentEnd {
     Sky(Rgb),
 }
 
-/// Sorts a traced segment's end, counting the fate of a path that ends there.
-pub(super) fn segment_end(world: &World, end: RayEnd, stats: &mut PathStats) -> SegmentEnd {
+/// Sorts a traced segment's end, counting the fate of a path that ends there; the sky is seen
+/// at the path's frequency ratio `g` at the segment's start.
+pub(super) fn segment_end(world: &World, end: RayEnd, g: f64, stats: &mut PathStats) -> SegmentEnd {
     match end {
         RayEnd::Hit(arrival) => SegmentEnd::Surface(arrival),
         RayEnd::Escaped { region, direction, traversed, energy } => {
@@ -136,7 +145,7 @@ pub(super) fn segment_end(world: &World, end: RayEnd, stats: &mut PathStats) -> 
             } else {
                 stats.fates.escaped += 1;
             }
-            SegmentEnd::Sky(shift(energy) * world.sky(region).radiance(direction))
+            SegmentEnd::Sky(shift(energy / g) * world.sky(region).radiance(direction))
         }
         RayEnd::Captured => {
             stats.fates.captured += 1;

@@ -1,6 +1,7 @@
-//! Disk: in object space the set `ρ ≤ r` of the plane through `centre` perpendicular to
-//! `normal`; an ellipse in world space under non-uniform scale, still sampled uniformly (an affine
-//! map has a constant Jacobian on a plane).
+//! Disk: in object space the set `r_i ≤ ρ ≤ r` of the plane through `centre` perpendicular to
+//! `normal` (an annulus where the inner radius `r_i` is not zero, as pbrt's `innerradius`); an
+//! ellipse in world space under non-uniform scale, still sampled uniformly (an affine map has a
+//! constant Jacobian on a plane).
 //!
 //! # uv
 //!
@@ -21,6 +22,8 @@ pub struct Disk {
     /// Object space with the disk in the z = 0 plane, centred at the origin, facing +z, to world.
     to_world: Transform,
     radius: f64,
+    /// The hole's radius, 0 for a whole disk.
+    inner_radius: f64,
     /// Unit outward world normal.
     normal: Vec3,
     min_stretch: f64,
@@ -29,10 +32,24 @@ pub struct Disk {
 
 impl Disk {
     pub fn new(centre: Vec3, normal: Vec3, radius: f64, transform: &Transform) -> Result<Self, ShapeError> {
+        Self::annulus(centre, normal, 0.0, radius, transform)
+    }
+
+    /// The disk of `radius` with a hole of `inner_radius` (`0 ≤ inner_radius < radius`).
+    pub fn annulus(
+        centre: Vec3,
+        normal: Vec3,
+        inner_radius: f64,
+        radius: f64,
+        transform: &Transform,
+    ) -> Result<Self, ShapeError> {
         const NAME: &str = "disk";
         let centre = check::point(NAME, "centre", centre)?;
         let normal = check::direction(NAME, "normal", normal)?;
         let radius = check::positive(NAME, "radius", radius)?;
+        if !(inner_radius >= 0.0 && inner_radius < radius) {
+            return Err(ShapeError::InvalidInnerRadius { inner_radius, radius });
+        }
         check::transform(NAME, transform)?;
         let to_world =
             placement(centre, normal).map_err(|_| ShapeError::InvalidTransform { shape: NAME })?.then(transform);
@@ -40,9 +57,10 @@ impl Disk {
         Ok(Self {
             to_world,
             radius,
+            inner_radius,
             normal: to_world.normal(Vec3::Z).normalize(),
             min_stretch: to_world.scale_bounds().0,
-            area: PI * radius * radius * stretch.factor(Vec3::Z),
+            area: PI * (radius * radius - inner_radius * inner_radius) * stretch.factor(Vec3::Z),
         })
     }
 
@@ -66,7 +84,8 @@ impl Disk {
             return None;
         }
         let (x, y) = (o.x + t * d.x, o.y + t * d.y);
-        (x * x + y * y <= self.radius * self.radius).then_some(t)
+        let rho2 = x * x + y * y;
+        (rho2 <= self.radius * self.radius && rho2 >= self.inner_radius * self.inner_radius).then_some(t)
     }
 
     pub fn surface(&self, ray: &Ray, t: f64) -> SurfaceHit {
@@ -74,9 +93,10 @@ impl Disk {
         let d = self.to_world.inverse_vector(ray.dir);
         let (mut x, mut y) = (o.x + t * d.x, o.y + t * d.y);
         let mut rho = x.hypot(y);
-        if rho > self.radius {
-            (x, y) = (x * self.radius / rho, y * self.radius / rho);
-            rho = self.radius;
+        let clamped = rho.clamp(self.inner_radius, self.radius);
+        if clamped != rho {
+            (x, y) = (x * clamped / rho, y * clamped / rho);
+            rho = clamped;
         }
         let phi = azimuth(x, y);
         SurfaceHit {
@@ -93,8 +113,15 @@ impl Disk {
     }
 
     pub fn sample_area(&self, u: [f64; 2]) -> (Vec3, Vec3) {
-        let [x, y] = concentric_disk(u);
-        (self.to_world.point(Vec3::new(x, y, 0.0) * self.radius), self.normal)
+        if self.inner_radius == 0.0 {
+            let [x, y] = concentric_disk(u);
+            return (self.to_world.point(Vec3::new(x, y, 0.0) * self.radius), self.normal);
+        }
+        // Uniform in area: ρ² uniform between the radii.
+        let (inner2, outer2) = (self.inner_radius * self.inner_radius, self.radius * self.radius);
+        let rho = (inner2 + u[0] * (outer2 - inner2)).sqrt();
+        let (sin, cos) = (TAU * u[1]).sin_cos();
+        (self.to_world.point(Vec3::new(rho * cos, rho * sin, 0.0)), self.normal)
     }
 
     pub fn supporting_plane(&self) -> (Vec3, Vec3) {
@@ -102,11 +129,18 @@ impl Disk {
     }
 
     /// Object-space signed height above the disk's plane where the point projects inside the
-    /// disk, else the distance to the rim; times `σ_min` (a lower bound under non-uniform scale).
+    /// disk, else the distance to the nearer rim; times `σ_min` (a lower bound under
+    /// non-uniform scale).
     pub fn surface_function(&self, p: Vec3) -> f64 {
         let q = self.to_world.inverse_point(p);
         let rho = q.x.hypot(q.y);
-        let d = if rho <= self.radius { q.z } else { q.z.hypot(rho - self.radius) };
+        let d = if rho > self.radius {
+            q.z.hypot(rho - self.radius)
+        } else if rho < self.inner_radius {
+            q.z.hypot(self.inner_radius - rho)
+        } else {
+            q.z
+        };
         d * self.min_stretch
     }
 }
@@ -142,6 +176,25 @@ mod tests {
         assert_eq!(d.intersect(&Ray::new(Vec3::new(0.0, 0.0, 3.0), -Vec3::Z, 1.5)), None);
         assert!((d.area() - 4.0 * PI).abs() < 1e-12);
         assert_eq!(d.bounds(), Aabb::new(Vec3::new(-2.0, -2.0, 1.0), Vec3::new(2.0, 2.0, 1.0)));
+    }
+
+    #[test]
+    fn an_annulus_has_a_hole_and_is_sampled_in_its_ring() {
+        let d = Disk::annulus(Vec3::ZERO, Vec3::Z, 1.0, 2.0, &Transform::IDENTITY).unwrap();
+        assert!((d.area() - 3.0 * PI).abs() < 1e-12);
+        assert_eq!(d.intersect(&Ray::new(Vec3::new(0.5, 0.0, 1.0), -Vec3::Z, 10.0)), None);
+        assert_eq!(d.intersect(&Ray::new(Vec3::new(1.5, 0.0, 1.0), -Vec3::Z, 10.0)), Some(1.0));
+        assert!(d.surface_function(Vec3::new(0.5, 0.0, 0.0)) > 0.0, "the hole is outside");
+        // ρ² is uniform: half the samples lie inside ρ² = (1 + 4)/2.
+        let inside = (0..1000)
+            .filter(|&i| {
+                let (p, _) = d.sample_area([(i as f64 + 0.5) / 1000.0, 0.3]);
+                assert!((1.0 - 1e-12..=2.0 + 1e-12).contains(&p.length()));
+                p.length_squared() < 2.5
+            })
+            .count();
+        assert_eq!(inside, 500);
+        assert!(Disk::annulus(Vec3::ZERO, Vec3::Z, 2.0, 2.0, &Transform::IDENTITY).is_err());
     }
 
     #[test]

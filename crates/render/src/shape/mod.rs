@@ -134,6 +134,17 @@ impl Shape {
         Disk::new(centre, normal, radius, transform).map(Shape::from)
     }
 
+    /// The disk of [`Shape::disk`] with a hole of `inner_radius` about its centre.
+    pub fn annulus(
+        centre: Vec3,
+        normal: Vec3,
+        inner_radius: f64,
+        radius: f64,
+        transform: &Transform,
+    ) -> Result<Shape, ShapeError> {
+        Disk::annulus(centre, normal, inner_radius, radius, transform).map(Shape::from)
+    }
+
     /// The box `[min, max]`, axis-aligned in the object space of `transform`.
     pub fn cuboid(min: Vec3, max: Vec3, transform: &Transform) -> Result<Shape, ShapeError> {
         Cuboid::new(min, max, transform).map(Shape::from)
@@ -275,6 +286,8 @@ pub enum ShapeError {
     EmptyCuboid { min: Vec3, max: Vec3 },
     /// The transform is not finite or not invertible.
     InvalidTransform { shape: &'static str },
+    /// A disk's hole is negative or not smaller than the disk.
+    InvalidInnerRadius { inner_radius: f64, radius: f64 },
 }
 
 impl fmt::Display for ShapeError {
@@ -297,6 +310,9 @@ impl fmt::Display for ShapeError {
             }
             Self::InvalidTransform { shape } => {
                 write!(f, "{shape}: transform is not finite or not invertible")
+            }
+            Self::InvalidInnerRadius { inner_radius, radius } => {
+                write!(f, "disk: inner_radius {inner_radius} must be at least 0 and less than the radius {radius}")
             }
         }
     }

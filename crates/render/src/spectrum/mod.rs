@@ -9,6 +9,7 @@
 //! The design follows pbrt-v4's `spectrum.h` / `color.h` (Pharr, Jakob, Humphreys 2023, ch. 4.5–4.6).
 
 mod blackbody;
+mod blackbody_colour;
 mod cie;
 mod cie_data;
 mod d65;
@@ -22,6 +23,7 @@ mod wavelengths;
 mod xyz;
 
 pub use blackbody::{Blackbody, NormalizedBlackbody, WIEN_DISPLACEMENT};
+pub use blackbody_colour::BlackbodyColours;
 pub use cie::{cmf, xyz_quadrature};
 pub use d65::D65;
 pub use rgb_spectrum::{RgbIlluminantSpectrum, RgbUpsampler};

@@ -22,7 +22,7 @@ use render::material::Material;
 use render::shape::{Instance, InstancedMesh, Shape, TriangleMesh};
 use render::texture::Texture;
 use render::transform::Transform;
-use render::world::{Emission, Object, Profile};
+use render::world::{Emission, Object, Profile, Radiance};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -78,7 +78,7 @@ impl Builder<'_> {
         for p in &scene.placements {
             let primitive = &scene.primitives[p.primitive];
             let (material, emission) = match primitive.material {
-                Some(m) => assigned[m],
+                Some(m) => assigned[m].clone(),
                 None => (self.default_material(), None),
             };
             let to_world = p.transform.then(placement);
@@ -98,7 +98,7 @@ impl Builder<'_> {
                 objects.extend(TriangleMesh::shapes(&mesh).into_iter().map(|shape| Object {
                     shape,
                     material,
-                    emission,
+                    emission: emission.clone(),
                 }));
             }
         }
@@ -117,7 +117,7 @@ impl Builder<'_> {
                     Some(cone) => {
                         let axis = placement.vector(cone.axis).normalize_or_zero();
                         let profile = Profile::Spot { cos_inner: cone.cos_inner, cos_outer: cone.cos_outer };
-                        let emission = Emission { radiance, two_sided: false, profile };
+                        let emission = Emission { radiance: Radiance::Rgb(radiance), two_sided: false, profile };
                         (Shape::disk(centre, axis, POINT_LIGHT_RADIUS, &Transform::IDENTITY), emission)
                     }
                 };
@@ -159,7 +159,7 @@ impl Builder<'_> {
                 Some(&index) => (index, None),
                 None => {
                     self.materials.push(m.material.clone());
-                    (self.materials.len() - 1, m.emission)
+                    (self.materials.len() - 1, m.emission.clone())
                 }
             })
             .collect())

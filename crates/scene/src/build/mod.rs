@@ -1,6 +1,7 @@
 //! From the document tree to a [`Scene`]: one function per section of the file, each checking its
 //! values where it reads them so that errors point at the offending value.
 
+mod accretion_disk;
 mod camera;
 mod gltf_object;
 mod material;
@@ -40,7 +41,7 @@ pub(crate) struct Builder<'a> {
 }
 
 const TOP_LEVEL: &[&str] =
-    &["spacetime", "camera", "views", "animation", "render", "sky", "lower", "materials", "objects"];
+    &["spacetime", "camera", "views", "animation", "render", "sky", "lower", "materials", "objects", "accretion_disk"];
 
 /// Builds the scene described by the parsed document `root`.
 pub(crate) fn scene<'a>(
@@ -81,6 +82,9 @@ pub(crate) fn scene<'a>(
             }
         }
     }
+    if let Some(n) = root.get("accretion_disk") {
+        upper.push(b.accretion_disk(&n, &spacetime, axis)?);
+    }
     let (cameras, chosen) = camera_tables(doc, &root, view)?;
     let mut rigs = Vec::with_capacity(cameras.len());
     for t in &cameras {
@@ -115,6 +119,17 @@ pub(crate) fn scene<'a>(
         }
         None => Sky::Constant(render::color::Rgb::ZERO),
     };
+    if settings.integrator == render::settings::IntegratorKind::Photon
+        && upper.iter().chain(&lower).any(|o| o.emission.as_ref().is_some_and(|e| e.shifts_colour()))
+    {
+        let render = root.get("render").map(|n| n.table(settings::RENDER_KEYS)).transpose()?;
+        let message = "\"photon\" carries RGB power from the lights and cannot follow how a blackbody's or an \
+                       accretion disk's colour shifts on its way (use \"path\")";
+        return Err(match render {
+            Some(t) => t.loc("integrator").err(message),
+            None => root.err(message),
+        });
+    }
     let world = World::new(b.materials, (upper, upper_sky), (lower, lower_sky));
     Ok(Scene { spacetime, axis, camera, world, settings, animation: Some(animation) })
 }

@@ -4,6 +4,7 @@ use super::sky::radiance;
 use super::Builder;
 use crate::reader::{fmt_vec, num, Loc, Node, Result, Table};
 use render::color::Rgb;
+use render::emission::{BlackbodyLight, Profile, Radiance};
 use render::geometry::Vec3;
 use render::material::Material;
 use render::shape::{load_obj, Shape, ShapeError};
@@ -18,7 +19,7 @@ const SHAPES: &[(&str, &[&str])] = &[
     ("sphere", &["center", "centre", "radius"]),
     ("plane", &["point", "normal"]),
     ("rectangle", &["corner", "edge_u", "edge_v"]),
-    ("disk", &["center", "centre", "normal", "radius"]),
+    ("disk", &["center", "centre", "normal", "radius", "inner_radius"]),
     ("box", &["min", "max"]),
     ("cylinder", &["base", "axis", "radius", "height"]),
     ("mesh", &["file"]),
@@ -26,7 +27,7 @@ const SHAPES: &[(&str, &[&str])] = &[
 
 const TRANSFORM_KEYS: &[&str] = &["translate", "rotate", "scale"];
 const ROTATION_KEYS: &[&str] = &["axis", "degrees"];
-const EMISSION_KEYS: &[&str] = &["radiance", "two_sided"];
+const EMISSION_KEYS: &[&str] = &["radiance", "temperature", "luminance", "two_sided"];
 
 /// A length that must be positive.
 fn positive(t: &Table<'_>, key: &str) -> Result<f64> {
@@ -77,16 +78,47 @@ fn transform(n: &Node<'_>) -> Result<Transform> {
     Ok(m)
 }
 
-/// `emission = { radiance = [r, g, b], two_sided = false }`, or just the radiance.
+/// `emission = { radiance = [r, g, b], two_sided = false }`, or just the radiance; or a
+/// blackbody, `emission = { temperature = 5800, luminance = 1 }` (kelvin; the luminance at rest,
+/// default 1, as bright as radiance 1).
 fn emission(n: &Node<'_>) -> Result<Emission> {
     if n.is_number() || n.is_array() {
         return Ok(Emission::uniform(radiance(n)?, false));
     }
     if !n.is_table() {
-        return Err(n.expected("a radiance [r, g, b] or a table { radiance = [r, g, b], two_sided = false }"));
+        return Err(n.expected(
+            "a radiance [r, g, b] or a table { radiance = [r, g, b], two_sided = false } or { temperature = 5800 }",
+        ));
     }
     let t = n.table(EMISSION_KEYS)?;
-    Ok(Emission::uniform(t.req("radiance", radiance)?, t.or("two_sided", false, |n| n.bool())?))
+    let two_sided = t.or("two_sided", false, |n| n.bool())?;
+    let kind = match (t.get("radiance"), t.get("temperature")) {
+        (Some(_), Some(_)) => {
+            return Err(t.loc("temperature").err("an emitter has a radiance or a temperature, not both"))
+        }
+        (Some(_), None) => {
+            if t.get("luminance").is_some() {
+                return Err(t.loc("luminance").err("a luminance scales a temperature's blackbody; scale the radiance"));
+            }
+            Radiance::Rgb(t.req("radiance", radiance)?)
+        }
+        (None, Some(_)) => {
+            let temperature = t.req("temperature", |n| n.f64())?;
+            let luminance = t.or("luminance", 1.0, |n| n.f64())?;
+            if !(luminance >= 0.0 && luminance.is_finite()) {
+                return Err(t.loc("luminance").err(format!("must be ≥ 0, got {}", num(luminance))));
+            }
+            let light = BlackbodyLight::new(temperature, luminance).ok_or_else(|| {
+                t.loc("temperature").err(format!(
+                    "must be at least 100 K (cooler bodies emit no visible light), got {}",
+                    num(temperature)
+                ))
+            })?;
+            Radiance::Blackbody(light)
+        }
+        (None, None) => return Err(t.missing("radiance")),
+    };
+    Ok(Emission { radiance: kind, two_sided, profile: Profile::Uniform })
 }
 
 impl Builder<'_> {
@@ -113,7 +145,7 @@ impl Builder<'_> {
         let shape = t.require("shape")?;
         let transform_loc = transform_node.as_ref().map(Node::loc);
         let shapes = self.shapes(&shape, &placement, transform_loc)?;
-        Ok((region, shapes.into_iter().map(|shape| Object { shape, material, emission }).collect()))
+        Ok((region, shapes.into_iter().map(|shape| Object { shape, material, emission: emission.clone() }).collect()))
     }
 
     /// An object entry with `gltf = "…"` instead of a shape.
@@ -146,7 +178,13 @@ impl Builder<'_> {
                 t.req("edge_v", |n| n.vec3())?,
                 placement,
             ),
-            "disk" => Shape::disk(center(&t)?, t.req("normal", |n| n.direction())?, positive(&t, "radius")?, placement),
+            "disk" => Shape::annulus(
+                center(&t)?,
+                t.req("normal", |n| n.direction())?,
+                t.or("inner_radius", 0.0, |n| n.f64())?,
+                positive(&t, "radius")?,
+                placement,
+            ),
             "box" => {
                 let min = t.req("min", |n| n.vec3())?;
                 let max = t.req("max", |n| n.vec3())?;
@@ -192,6 +230,7 @@ fn shape_error(t: &Table<'_>, e: ShapeError, transform_loc: Option<Loc<'_>>) -> 
         | ShapeError::ZeroDirection { parameter, .. } => at(parameter).err(e.to_string()),
         ShapeError::DegenerateRectangle { .. } => t.loc("edge_v").err(e.to_string()),
         ShapeError::EmptyCuboid { .. } => t.loc("max").err(e.to_string()),
+        ShapeError::InvalidInnerRadius { .. } => t.loc("inner_radius").err(e.to_string()),
         ShapeError::InvalidTransform { .. } => match transform_loc {
             Some(loc) => loc.err(e.to_string()),
             None => t.err(e.to_string()),

@@ -1,7 +1,7 @@
 //! `[render]`: image size, sampling, integrator, reconstruction filter and tone mapping.
 
 use crate::reader::{num, Node, Result, Table};
-use render::film::{Curve, Filter, FilterError, ToneMap, MITCHELL_RECOMMENDED_B_C};
+use render::film::{Curve, DataChannel, Filter, FilterError, ToneMap, MITCHELL_RECOMMENDED_B_C};
 use render::integrator::photon;
 use render::settings::{Connector, IntegratorKind, Intersection, PhotonSettings, RenderSettings};
 use spacetime::Spacetime;
@@ -23,6 +23,7 @@ pub(super) const RENDER_KEYS: &[&str] = &[
     "exposure",
     "tonemap",
     "filter",
+    "channels",
 ];
 
 /// The largest image side accepted (as the command line's `--width`/`--height`).
@@ -106,7 +107,25 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
         },
         tonemap: ToneMap { exposure_ev, curve },
         geodesic_rtol,
+        channels: match t.get("channels") {
+            Some(n) => channels(&n)?,
+            None => Vec::new(),
+        },
     })
+}
+
+/// `channels = ["redshift", "fate", "disk_radius"]`: data channels for EXR images, each once.
+fn channels(n: &Node<'_>) -> Result<Vec<DataChannel>> {
+    let names = DataChannel::ALL.map(DataChannel::name);
+    let mut channels = Vec::new();
+    for element in n.array()? {
+        let channel = DataChannel::ALL[element.keyword("data channel", &names)?];
+        if channels.contains(&channel) {
+            return Err(element.err(format!("\"{}\" is listed twice", channel.name())));
+        }
+        channels.push(channel);
+    }
+    Ok(channels)
 }
 
 /// `photons_per_iteration` and `photon_radius`, only with `integrator = "photon"`.

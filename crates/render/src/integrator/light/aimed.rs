@@ -42,11 +42,13 @@ pub(super) fn direct(
     let Some(light) = sample_point(lit.world, at, u_choice, u_point) else { return Rgb::ZERO };
     let Some(aimed) = lit.propagator.aim(at.region, at.hit.p, light.point) else { return Rgb::ZERO };
     let normal_local = lit.propagator.local_normal(at.region, light.point, light.normal);
-    let emitted = light.emission.radiance_towards(normal_local, -aimed.end);
+    if !light.emission.faces(normal_local, -aimed.end) {
+        return Rgb::ZERO;
+    }
     let pdf = solid_angle_density(light.density(), light.normal, aimed.end_tangent, aimed.solid_angle_per_area);
-    contribution(shading, aimed.start, emitted, pdf, || {
-        traced_arrival(lit, at, shading.ng, aimed.start, (light.object, light.point), stats)
-    })
+    let visible = || traced_arrival(lit, at, shading.ng, aimed.start, (light.object, light.point), stats);
+    let emitted = |g| light.seen(normal_local, -aimed.end, g, lit);
+    contribution(shading, aimed.start, pdf, visible, emitted)
 }
 
 /// The density [`direct`] has for the BSDF-sampled ray that left `bounce` and reached the

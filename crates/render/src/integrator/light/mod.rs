@@ -56,6 +56,8 @@ pub(super) struct Shading<'b> {
     pub wo: Vec3,
     /// Geometric normal in the local frame.
     pub ng: Vec3,
+    /// The path's frequency ratio `ν_camera / ν_local` here.
+    pub g: f64,
 }
 
 /// Where the previous bounce left from, for the MIS weight of an emitter hit by BSDF sampling.
@@ -118,23 +120,29 @@ impl LightSampling {
     }
 }
 
-/// The MIS-weighted contribution of light `emitted` arriving from local-frame direction `wi`
-/// (sampled with solid-angle density `pdf`), if `visible` finds it unblocked and returns its
-/// radiance factor: the BSDF is evaluated first, so blocked-or-not is only asked where it
+/// The MIS-weighted contribution of light arriving from local-frame direction `wi` (sampled
+/// with solid-angle density `pdf`), if `visible` finds it unblocked and returns the photon's
+/// energy at the light relative to the shading point's (`E_light / E_here`, as
+/// [`Arrival::energy`]); `emitted` gives the light's radiance seen at a frequency ratio
+/// `ν_camera / ν_light`. The BSDF is evaluated first, so blocked-or-not is only asked where it
 /// reflects anything.
 pub(super) fn contribution(
     shading: &Shading<'_>,
     wi: Vec3,
-    emitted: Rgb,
     pdf: f64,
-    visible: impl FnOnce() -> Option<f32>,
+    visible: impl FnOnce() -> Option<f64>,
+    emitted: impl FnOnce(f64) -> Rgb,
 ) -> Rgb {
     let wi_local = shading.frame.to_local(wi);
     let f = shading.bsdf.f(shading.wo, wi_local) * wi_local.z.abs() as f32;
-    if f == Rgb::ZERO || emitted == Rgb::ZERO || !(pdf > 0.0 && pdf.is_finite()) {
+    if f == Rgb::ZERO || !(pdf > 0.0 && pdf.is_finite()) {
         return Rgb::ZERO;
     }
-    let Some(factor) = visible() else { return Rgb::ZERO };
+    let Some(energy) = visible() else { return Rgb::ZERO };
+    let le = emitted(shading.g / energy);
+    if le == Rgb::ZERO {
+        return Rgb::ZERO;
+    }
     let weight = power_heuristic(pdf, shading.bsdf.pdf(shading.wo, wi_local));
-    f * emitted * factor * (weight / pdf) as f32
+    f * le * (weight / pdf) as f32
 }

@@ -1,8 +1,10 @@
 //! A point sampled on a light, and the solid-angle density a light ray to it has.
 
 use super::Lit;
+use crate::color::Rgb;
+use crate::emission::Seen;
 use crate::geometry::Vec3;
-use crate::integrator::path::{leave, shift};
+use crate::integrator::path::leave;
 use crate::integrator::stats::PathStats;
 use crate::propagator::{Arrival, RayEnd};
 use crate::world::{Emission, World};
@@ -13,33 +15,46 @@ use crate::world::{Emission, World};
 const ARRIVAL_TOLERANCE: f64 = 64.0;
 
 /// A point sampled on a light.
-pub(super) struct LightPoint {
+pub(super) struct LightPoint<'w> {
     pub object: usize,
+    pub region: spacetime::Region,
     pub point: Vec3,
     /// World unit normal.
     pub normal: Vec3,
-    pub emission: Emission,
+    pub emission: &'w Emission,
     /// Probability of the light's choice.
     pub probability: f64,
     /// The light's world area (points are sampled uniformly in it).
     pub area: f64,
 }
 
-impl LightPoint {
+impl LightPoint<'_> {
     /// The point's area density: the light's probability over its world area.
     pub fn density(&self) -> f64 {
         self.probability / self.area
     }
+
+    /// The radiance leaving the point in local direction `dir` (surface normal `normal` in
+    /// the local frame), seen at frequency ratio `g`.
+    pub fn seen(&self, normal: Vec3, dir: Vec3, g: f64, lit: Lit<'_>) -> Rgb {
+        let seen = Seen { region: self.region, point: self.point, g, propagator: lit.propagator };
+        self.emission.seen(normal, dir, &seen)
+    }
 }
 
 /// Samples a light in the region of `at` (`u_choice` picks the light, `u_point` the point).
-pub(super) fn sample_point(world: &World, at: &Arrival, u_choice: f64, u_point: [f64; 2]) -> Option<LightPoint> {
+pub(super) fn sample_point<'w>(
+    world: &'w World,
+    at: &Arrival,
+    u_choice: f64,
+    u_point: [f64; 2],
+) -> Option<LightPoint<'w>> {
     let choice = world.choose_light(at.region, u_choice)?;
     let light = world.object(at.region, choice.object);
-    let emission = light.emission?;
+    let emission = light.emission.as_ref()?;
     let (point, normal) = light.shape.sample_area(u_point);
     let (probability, area) = (choice.probability, light.shape.area());
-    Some(LightPoint { object: choice.object, point, normal, emission, probability, area })
+    Some(LightPoint { object: choice.object, region: at.region, point, normal, emission, probability, area })
 }
 
 /// The probability of choosing the emitter `arrival` reached, and its world area: `None` where
@@ -58,7 +73,8 @@ pub(super) fn solid_angle_density(area_density: f64, normal: Vec3, tangent: Vec3
 
 /// Whether the light ray leaving the shading point of `at` (local geometric normal `ng_local`)
 /// along local direction `wi` reaches the point `point` of light `object`, traced against the
-/// scene as any ray is: the radiance factor `(E_x/E_y)⁴` if so, else `None`.
+/// scene as any ray is: the photon's energy there relative to here, `E_y/E_x`, if so, else
+/// `None`.
 pub(super) fn traced_arrival(
     lit: Lit<'_>,
     at: &Arrival,
@@ -66,14 +82,14 @@ pub(super) fn traced_arrival(
     wi: Vec3,
     (object, point): (usize, Vec3),
     stats: &mut PathStats,
-) -> Option<f32> {
+) -> Option<f64> {
     let origin = leave(at.hit.p, at.hit.ng, ng_local, wi);
     stats.rays += 1;
     match lit.propagator.trace(lit.world, at.region, origin, wi) {
         RayEnd::Hit(a)
             if a.object == object && (a.hit.p - point).length() <= ARRIVAL_TOLERANCE * lit.propagator.epsilon() =>
         {
-            Some(shift(a.energy))
+            Some(a.energy)
         }
         RayEnd::Failed => {
             stats.fates.failed += 1;

@@ -22,9 +22,12 @@ pub(super) fn direct(
     let to_light = light.point - at.hit.p;
     let dist2 = to_light.length_squared();
     let wi = to_light / dist2.sqrt();
-    let emitted = light.emission.radiance_towards(light.normal, -wi);
+    if !light.emission.faces(light.normal, -wi) {
+        return Rgb::ZERO;
+    }
     let pdf = light.probability * dist2 / (light.normal.dot(wi).abs() * light.area);
-    contribution(shading, wi, emitted, pdf, || {
+    let emitted = |g| light.seen(light.normal, -wi, g, lit);
+    let visible = || {
         let origin = offset_origin(at.hit.p, at.hit.ng, wi);
         let to_point = light.point - origin;
         let length = to_point.length();
@@ -32,7 +35,8 @@ pub(super) fn direct(
         // Stop just short of the light so the light itself does not count as a blocker.
         let shadow = Ray::new(origin, to_point / length, length * (1.0 - 1e-6));
         (!lit.world.occluded(at.region, &shadow)).then_some(1.0)
-    })
+    };
+    contribution(shading, wi, pdf, visible, emitted)
 }
 
 /// The density [`direct`] has for the straight ray that reached the emitter of `arrival`

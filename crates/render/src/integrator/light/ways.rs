@@ -38,7 +38,6 @@ use super::point::{choice, sample_point, solid_angle_density, traced_arrival, Li
 use super::{contribution, Lit, Shading};
 use crate::color::Rgb;
 use crate::geometry::Vec3;
-use crate::integrator::path::shift;
 use crate::integrator::stats::PathStats;
 use crate::propagator::{Arrival, Propagator};
 use crate::sampling::Sampler;
@@ -76,8 +75,11 @@ pub(super) fn way_probability(way: Way, x: Vec3, y: Vec3) -> f64 {
 pub(super) struct Candidate<'w> {
     /// Direction the ray leaves the shading point in (its static frame).
     pub wi: Vec3,
-    /// Emitted radiance towards the shading point, as the static observer at the light sees it.
-    pub emitted: Rgb,
+    /// The light point, and the local direction its light leaves in towards the shading point
+    /// with the light's normal there.
+    light: &'w LightPoint<'w>,
+    leaving: Vec3,
+    normal_local: Vec3,
     /// Density of `wi` in solid angle at the shading point.
     pub pdf: f64,
     object: usize,
@@ -108,7 +110,8 @@ pub(super) fn direct(
         }
         if let Some(light) = join(&point, lit.propagator, at, (way, probability), &mut waypoints) {
             let visible = || light.arrives(lit, at, shading.ng, stats);
-            sum += contribution(shading, light.wi, light.emitted, light.pdf, visible);
+            let emitted = |g| light.light.seen(light.normal_local, light.leaving, g, lit);
+            sum += contribution(shading, light.wi, light.pdf, visible, emitted);
         }
     }
     sum
@@ -129,7 +132,7 @@ fn reflects_none(at: &Arrival, shading: &Shading<'_>, point: &LightPoint) -> boo
 /// which was tried with probability `probability` ([`way_probability`]), keeping its
 /// waypoints in `waypoints`; `None` if there is none or it carries nothing.
 fn join<'w>(
-    light: &LightPoint,
+    light: &'w LightPoint<'w>,
     propagator: &Propagator,
     at: &Arrival,
     (way, probability): (Way, f64),
@@ -138,24 +141,34 @@ fn join<'w>(
     let facing = (!light.emission.two_sided).then_some(light.normal);
     let connection = propagator.connect(at.hit.p, light.point, way, facing, waypoints)?;
     let normal_local = propagator.local_normal(at.region, light.point, light.normal);
-    let emitted = light.emission.radiance_towards(normal_local, -Vec3::from_array(connection.end));
+    let leaving = -Vec3::from_array(connection.end);
     let pdf = probability * connection_density(light.density(), light.normal, &connection);
-    if emitted == Rgb::ZERO || !(pdf > 0.0 && pdf.is_finite()) {
+    if !(light.emission.faces(normal_local, leaving) && pdf > 0.0 && pdf.is_finite()) {
         return None;
     }
     let wi = Vec3::from_array(connection.start);
-    Some(Candidate { wi, emitted, pdf, object: light.object, point: light.point, connection, waypoints })
+    Some(Candidate {
+        wi,
+        light,
+        leaving,
+        normal_local,
+        pdf,
+        object: light.object,
+        point: light.point,
+        connection,
+        waypoints,
+    })
 }
 
 impl Candidate<'_> {
     /// Whether the connection from the shading point of `at` (local geometric normal `ng_local`)
-    /// reaches the sampled point unoccluded: the radiance factor `(E_x/E_y)⁴` if so, else
-    /// `None`. A connection whose triangle no object comes near (within ε) is seen without
+    /// reaches the sampled point unoccluded: the photon's energy there relative to here,
+    /// `E_y/E_x`, if so, else `None`. A connection whose triangle no object comes near (within ε) is seen without
     /// tracing it; any other is traced against the scene.
-    pub(super) fn arrives(&self, lit: Lit<'_>, at: &Arrival, ng_local: Vec3, stats: &mut PathStats) -> Option<f32> {
+    pub(super) fn arrives(&self, lit: Lit<'_>, at: &Arrival, ng_local: Vec3, stats: &mut PathStats) -> Option<f64> {
         if self.is_clear(lit, at) {
             let propagator = lit.propagator;
-            return Some(shift(propagator.lapse(at.region, at.hit.p) / propagator.lapse(at.region, self.point)));
+            return Some(propagator.lapse(at.region, at.hit.p) / propagator.lapse(at.region, self.point));
         }
         self.traced(lit, at, ng_local, stats)
     }
@@ -185,7 +198,7 @@ impl Candidate<'_> {
     }
 
     /// [`Candidate::arrives`] by tracing the connection against the scene.
-    fn traced(&self, lit: Lit<'_>, at: &Arrival, ng_local: Vec3, stats: &mut PathStats) -> Option<f32> {
+    fn traced(&self, lit: Lit<'_>, at: &Arrival, ng_local: Vec3, stats: &mut PathStats) -> Option<f64> {
         traced_arrival(lit, at, ng_local, self.wi, (self.object, self.point), stats)
     }
 }
@@ -227,11 +240,11 @@ mod tests {
 
     /// A point of the floor, the board or the ball, seen from above the floor, and a point
     /// sampled on the lamp for it; `None` where the eye's ray missed them.
-    fn shading_point(
-        world: &World,
+    fn shading_point<'w>(
+        world: &'w World,
         propagator: &Propagator,
         uniform: &mut impl FnMut() -> f64,
-    ) -> Option<(Arrival, LightPoint)> {
+    ) -> Option<(Arrival, LightPoint<'w>)> {
         let eye = Vec3::new(0.5, 3.0, 7.0);
         let target = Vec3::new(12.0 * uniform() - 6.0, -4.0, 16.0 * uniform() - 8.0);
         let RayEnd::Hit(at) = propagator.trace(world, Region::Upper, eye, (target - eye).normalize()) else {
@@ -245,7 +258,7 @@ mod tests {
     fn joined<'w>(
         propagator: &Propagator,
         at: &Arrival,
-        point: &LightPoint,
+        point: &'w LightPoint<'w>,
         way: Way,
         waypoints: &'w mut Waypoints,
     ) -> Option<Candidate<'w>> {
@@ -269,15 +282,14 @@ mod tests {
                 let traced = candidate.traced(lit, &at, at.ng_local, &mut stats);
                 let clear = candidate.is_clear(lit, &at);
                 match traced {
-                    Some(shift) => {
+                    Some(energy) => {
                         seen += 1;
                         if clear {
                             cleared += 1;
-                            let direct = super::shift(
-                                propagator.lapse(at.region, at.hit.p) / propagator.lapse(at.region, candidate.point),
-                            );
+                            let direct =
+                                propagator.lapse(at.region, at.hit.p) / propagator.lapse(at.region, candidate.point);
                             // The traced ray starts off the surface and ends within ~ε of the point.
-                            assert!((direct / shift - 1.0).abs() < 1e-4, "shift {direct} vs traced {shift}");
+                            assert!((direct / energy - 1.0).abs() < 2.5e-5, "energy {direct} vs traced {energy}");
                         }
                     }
                     None => {

@@ -9,6 +9,7 @@
 use super::super::path::{leave, shift};
 use super::super::stats::PathStats;
 use crate::color::Rgb;
+use crate::emission::Seen;
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::{Propagator, RayEnd};
@@ -100,8 +101,9 @@ pub(super) fn radiance(
         let object = world.object(arrival.region, arrival.object);
         let hit = &arrival.hit;
         ng_local = arrival.ng_local;
-        if let Some(emission) = object.emission.filter(|_| !object.shape.area().is_finite()) {
-            radiance += beta * emission.radiance_towards(ng_local, -arrival.direction);
+        if let Some(emission) = object.emission.as_ref().filter(|_| !object.shape.area().is_finite()) {
+            let rest = Seen { region: arrival.region, point: hit.p, g: 1.0, propagator };
+            radiance += beta * emission.seen(ng_local, -arrival.direction, &rest);
         }
         (region, p, ng, depth) = (arrival.region, hit.p, hit.ng, depth + 1);
         bsdf = world.materials[object.material].bsdf(hit.uv, hit.p);

@@ -18,6 +18,7 @@ use super::aim::{self, Target};
 use super::sky::SkySource;
 use super::slot;
 use crate::color::Rgb;
+use crate::emission::Seen;
 use crate::geometry::Vec3;
 use crate::propagator::Propagator;
 use crate::sampling::Rng;
@@ -139,7 +140,7 @@ pub(super) fn emit(
     }
     let choice = world.choose_light(region, rng.next_f64())?;
     let light = world.object(region, choice.object);
-    let emission = light.emission?;
+    let emission = light.emission.as_ref()?;
     let (point, normal) = light.shape.sample_area(rng.next_2d());
     let local_normal = propagator.local_normal(region, point, normal);
     let target = sources.targets[slot(region)];
@@ -156,7 +157,7 @@ pub(super) fn emit(
         region,
         origin: leave(point, normal, local_normal, aimed.direction),
         direction: aimed.direction,
-        power: emission.radiance_towards(local_normal, aimed.direction) * scale as f32,
+        power: emission.seen(local_normal, aimed.direction, &Seen { region, point, g: 1.0, propagator }) * scale as f32,
     })
 }
 

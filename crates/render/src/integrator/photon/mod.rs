@@ -288,7 +288,7 @@ fn camera_pass(scene: &Scene, camera: &CameraPass<'_>, iteration: u32) -> (Vec<(
                     let size = [settings.width, settings.height];
                     let sample = match scene.camera.ray([x, y], fs.offset, size, sampler.next_2d()) {
                         Some(ray) => {
-                            let beta = Rgb::splat(ray.weight * fs.weight as f32);
+                            let beta = Rgb::splat(ray.weight() * fs.weight as f32);
                             let start = (scene.camera.region, ray.origin, ray.direction);
                             camera.trace(start, beta, &mut sampler, &mut stats)
                         }

@@ -1,0 +1,160 @@
+//! The light of a thin accretion disk (Novikov & Thorne 1973): each ring of the disk radiates as
+//! a blackbody at the temperature of its Page–Thorne flux, `T = T_peak (F/F_peak)^{1/4}`
+//! ([`spacetime::disk::ThinDisk`]), from gas on prograde circular geodesics.
+//!
+//! Seen by a receiver at frequency ratio `g` (to the local observer at the disk), the gas, moving
+//! at `v` relative to that observer, emits at the Doppler ratio `δ = 1/(γ(1 − v·n))` towards the
+//! receiver (`n` the direction the light leaves in): the ring is seen as the blackbody at
+//! `g δ T`. The teaching toggles take the parts apart: without `doppler` the colour is the one
+//! the gas would show at rest (the *Interstellar* disk), without `beaming` its brightness is;
+//! without `gravitational_shift` the light keeps the colour and brightness it left with, as the
+//! local observer sees it.
+
+use super::Seen;
+use crate::color::Rgb;
+use crate::geometry::Vec3;
+use crate::spectrum::BlackbodyColours;
+use spacetime::disk::ThinDisk;
+
+/// Which frequency shifts the disk's light is seen with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DiskShifts {
+    /// The gas's motion shifts the colour.
+    pub doppler: bool,
+    /// The gas's motion shifts the brightness (relativistic beaming).
+    pub beaming: bool,
+    /// Gravity (and the receiver's own motion) shift colour and brightness.
+    pub gravitational: bool,
+}
+
+impl Default for DiskShifts {
+    fn default() -> Self {
+        Self { doppler: true, beaming: true, gravitational: true }
+    }
+}
+
+/// An accretion disk's emission.
+#[derive(Debug)]
+pub struct DiskLight {
+    disk: ThinDisk,
+    /// World unit vector the gas turns about, counter-clockwise at `Ω > 0` (the chart's +z).
+    axis: Vec3,
+    peak_temperature: f64,
+    /// The hottest ring's flux, per unit accretion rate.
+    peak_flux: f64,
+    /// `luminance / Y(B(T_peak))`: the hottest ring has `luminance` at rest.
+    scale: f64,
+    shifts: DiskShifts,
+    /// Luminance at rest averaged over the disk's area.
+    mean_luminance: f64,
+}
+
+impl PartialEq for DiskLight {
+    fn eq(&self, other: &Self) -> bool {
+        (self.disk.orbits(), self.disk.outer_radius(), self.axis, self.peak_temperature, self.scale, self.shifts)
+            == (
+                other.disk.orbits(),
+                other.disk.outer_radius(),
+                other.axis,
+                other.peak_temperature,
+                other.scale,
+                other.shifts,
+            )
+    }
+}
+
+impl DiskLight {
+    /// The disk `disk` turning about the world unit vector `axis`, its hottest ring at
+    /// `peak_temperature` kelvin with luminance `luminance` at rest; `None` where the
+    /// temperature emits nothing visible (below 100 K) or the luminance is negative.
+    pub fn new(disk: ThinDisk, axis: Vec3, peak_temperature: f64, luminance: f64, shifts: DiskShifts) -> Option<Self> {
+        let colours = BlackbodyColours::get();
+        let y_peak = colours.luminance(peak_temperature);
+        if !(y_peak > 0.0 && peak_temperature.is_finite() && luminance >= 0.0 && luminance.is_finite()) {
+            return None;
+        }
+        let (_, peak_flux) = disk.peak();
+        let mut light =
+            Self { disk, axis, peak_temperature, peak_flux, scale: luminance / y_peak, shifts, mean_luminance: 0.0 };
+        light.mean_luminance = light.average_luminance();
+        Some(light)
+    }
+
+    pub fn disk(&self) -> &ThinDisk {
+        &self.disk
+    }
+
+    /// The world radii of the disk's edges (in the chart's equatorial plane).
+    pub fn world_radii(&self) -> (f64, f64) {
+        let orbits = self.disk.orbits();
+        (orbits.world_radius(self.disk.inner_radius()), orbits.world_radius(self.disk.outer_radius()))
+    }
+
+    pub fn mean_luminance(&self) -> f64 {
+        self.mean_luminance
+    }
+
+    /// The gas temperature at Boyer–Lindquist radius `r` (0 off the disk).
+    pub fn temperature(&self, r: f64) -> f64 {
+        let flux = self.disk.flux(r);
+        if flux > 0.0 && self.peak_flux > 0.0 {
+            self.peak_temperature * (flux / self.peak_flux).sqrt().sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// The Boyer–Lindquist radius of world point `p` on the disk.
+    pub fn radius(&self, p: Vec3) -> f64 {
+        let in_plane = p - p.dot(self.axis) * self.axis;
+        self.disk.orbits().radius_at(in_plane.length())
+    }
+
+    /// The Doppler factor `δ = ν_gas→receiver / ν_gas = 1/(γ(1 − v·n))` of the gas at
+    /// Boyer–Lindquist radius `r` (point `seen.point`) towards local direction `dir`: the
+    /// frequency the local observer measures over the one the gas emits. 1 where no local
+    /// observer exists.
+    pub fn doppler(&self, r: f64, dir: Vec3, seen: &Seen<'_>) -> f64 {
+        let omega = self.disk.orbits().orbit(r).omega;
+        match seen.propagator.orbital_velocity(seen.region, seen.point, self.axis, omega) {
+            Some(v) => (1.0 - v.length_squared()).sqrt() / (1.0 - v.dot(dir)),
+            None => 1.0,
+        }
+    }
+
+    /// The radiance leaving the disk at `seen.point` in local direction `dir`.
+    pub fn seen(&self, dir: Vec3, seen: &Seen<'_>) -> Rgb {
+        let r = self.radius(seen.point);
+        let temperature = self.temperature(r);
+        if temperature == 0.0 {
+            return Rgb::ZERO;
+        }
+        let doppler = self.doppler(r, dir, seen);
+        let gravity = if self.shifts.gravitational { seen.g } else { 1.0 };
+        let colour_g = gravity * if self.shifts.doppler { doppler } else { 1.0 };
+        let brightness_g = gravity * if self.shifts.beaming { doppler } else { 1.0 };
+        let (rgb, _) = BlackbodyColours::get().at(colour_g * temperature);
+        let scale = self.scale * (brightness_g / colour_g).powi(4);
+        Rgb::from_array(rgb.map(|c| (c * scale) as f32))
+    }
+
+    /// Luminance at rest averaged over the disk's area (midpoint rule in world radius).
+    fn average_luminance(&self) -> f64 {
+        const RINGS: usize = 512;
+        let (inner, outer) = self.world_radii();
+        let colours = BlackbodyColours::get();
+        let step = (outer - inner) / RINGS as f64;
+        let (mut weighted, mut area) = (0.0, 0.0);
+        for k in 0..RINGS {
+            let rho = inner + (k as f64 + 0.5) * step;
+            let t = self.temperature(self.disk.orbits().radius_at(rho));
+            weighted += colours.luminance(t) * rho;
+            area += rho;
+        }
+        if area > 0.0 {
+            self.scale * weighted / area
+        } else {
+            0.0
+        }
+    }
+}
