@@ -508,7 +508,61 @@ impl Propagator {
         }
         let chord = Ray::new(a.at, (b.at - a.at) / len, len);
         let (object, t) = world.intersect(region, &chord)?;
-        Some(ChordHit { object, chord, t, theta: a.theta + (b.theta - a.theta) * t / len })
+        let hit = ChordHit { object, chord, t, theta: a.theta + (b.theta - a.theta) * t / len };
+        Some(self.onto_curve(world, region, step, (&a, &b), hit).unwrap_or(hit))
+    }
+
+    /// A chord's hit `hit` on a flat object, moved onto the curve: the crossing of its plane by
+    /// the piece of `step` between `a` and `b` (whose chord crosses it, so the curve does too),
+    /// solved on the curve to a hundredth of ε by regula falsi (Illinois), then checked against
+    /// the object by a chord across the plane there, as [`Propagator::cross_flat`] does. A chord
+    /// lies within ε of the curve but may cross a plane it meets at a slant farther from where
+    /// the curve does; the hit's point, direction and energy are then the curve's. `None` (keep
+    /// the chord's hit) for curved objects and where the crossing misses the object.
+    fn onto_curve(
+        &self,
+        world: &World,
+        region: Region,
+        step: &CurvedStep<'_>,
+        (a, b): (&Knot, &Knot),
+        hit: ChordHit,
+    ) -> Option<ChordHit> {
+        let (point, normal) = world.supporting_plane(region, hit.object)?;
+        let height = |x: Vec3| normal.dot(x - point);
+        let (mut lo, mut hi) = ((a.theta, height(a.at)), (b.theta, height(b.at)));
+        if !(lo.1 * hi.1 < 0.0) {
+            return None;
+        }
+        let tolerance = CROSSING_TOLERANCE * self.epsilon;
+        // The chord's crossing lies on the plane; the curve's point at its θ need not.
+        let (mut theta, mut x) = (hit.theta, (step.knot)(hit.theta).at);
+        let mut kept = 0;
+        for _ in 0..64 {
+            let h = height(x);
+            if h.abs() <= tolerance {
+                break;
+            }
+            // Keep the bracket; halve the weight of an end kept twice (Illinois).
+            if (h > 0.0) == (lo.1 > 0.0) {
+                lo = (theta, h);
+                kept = if kept < 0 { kept - 1 } else { -1 };
+                if kept < -1 {
+                    hi.1 *= 0.5;
+                }
+            } else {
+                hi = (theta, h);
+                kept = if kept > 0 { kept + 1 } else { 1 };
+                if kept > 1 {
+                    lo.1 *= 0.5;
+                }
+            }
+            theta = lo.0 - lo.1 * (hi.0 - lo.0) / (hi.1 - lo.1);
+            x = (step.knot)(theta).at;
+        }
+        let dir = if height(a.at) > 0.0 { -normal } else { normal };
+        let chord = Ray::new(x - self.epsilon * dir, dir, 2.0 * self.epsilon);
+        let t = world.object(region, hit.object).shape.intersect(&chord)?;
+        Some(ChordHit { object: hit.object, chord, t, theta })
     }
 
     /// The first hit on the piece of a step from knot `a` to knot `b`, whose position and velocity
