@@ -144,3 +144,28 @@ fn the_redshift_channel_is_cunninghams_g_from_the_rays_constants_of_motion() {
     assert!(errors.len() > 150, "only {} pixels see the disk", errors.len());
     assert!(median < 1e-7 && worst < 2e-6, "relative difference: median {median}, worst {worst}");
 }
+
+#[test]
+fn a_lamp_ahead_of_a_moving_camera_is_the_blackbody_at_the_doppler_shifted_temperature() {
+    // Flat space: a camera moving at v towards a lamp straight ahead sees its light at
+    // D = √((1 + v)/(1 − v)) times the frequency, so the 3000 K lamp is the blackbody at D·3000 K:
+    // a bluer colour, not only a brighter one.
+    for v in [0.2f64, 0.5] {
+        let text = format!(
+            "[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = 2\nvelocity = [0, 0, {}]\n\
+             [render]\nwidth = 4\nheight = 4\nspp = 2\nmax_depth = 1\n\
+             [[objects]]\nshape = {{ type = \"disk\", center = [0, 0, -10], normal = [0, 0, 1], radius = 3 }}\n\
+             material = {{ type = \"diffuse\", reflectance = 0 }}\nemission = {{ temperature = 3000 }}\n",
+            -v
+        );
+        let film = film_of(&text);
+        let doppler = ((1.0 + v) / (1.0 - v)).sqrt();
+        let expected = BlackbodyLight::new(3000.0, 1.0).unwrap().seen(doppler);
+        let seen = film.pixel_f64(1, 2);
+        for (channel, want) in seen.iter().zip(expected.to_array()) {
+            assert!((channel / f64::from(want) - 1.0).abs() < 2e-3, "v = {v}: {seen:?} against {expected}");
+        }
+        let rest = BlackbodyLight::new(3000.0, 1.0).unwrap().seen(1.0);
+        assert!(expected.z / expected.x > 1.5 * rest.z / rest.x, "bluer");
+    }
+}
