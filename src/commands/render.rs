@@ -7,7 +7,9 @@ use super::Failure;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use progressive::{PathRender, Progressive};
-use render::film::{check_output_path, check_writable, read_checkpoint, Film, ImageFormat, Metadata};
+use render::film::{
+    check_output_path, check_writable, read_checkpoint, write_image_with_data, Film, ImageFormat, Metadata,
+};
 use render::integrator::photon::{PhotonRenderer, SppmResume, SppmState};
 use render::integrator::PathStats;
 use render::renderer::{render, Goal, NoiseTarget, Outcome, Part, RenderStats, Renderer, Resume};
@@ -484,7 +486,9 @@ impl Command<'_> {
             let channels = &self.scene.settings.channels;
             let data = (!channels.is_empty())
                 .then(|| render::renderer::data_layer(self.scene, &render::renderer::propagator(self.scene), channels));
-            render.write_image(&args.output, &self.scene.settings.tonemap, &metadata(&stats), data.as_ref())?;
+            let (film, tonemap) = (render.snapshot_film(), &self.scene.settings.tonemap);
+            write_image_with_data(&film, data.as_ref(), &args.output, tonemap, &metadata(&stats))
+                .map_err(|e| e.to_string())?;
         } else {
             render.checkpoint(&args.output, &|_| metadata(&stats))?;
         }

@@ -3,7 +3,7 @@
 //! stopped within a sample (a photon chunk), checkpointed while they run, and continued from a
 //! checkpoint bit-identically.
 
-use render::film::{write_checkpoint, write_image_with_data, DataLayer, Metadata, ToneMap};
+use render::film::{write_checkpoint, Film, Metadata};
 use render::integrator::photon::PhotonRenderer;
 use render::renderer::{Goal, RenderStats, Renderer};
 use std::path::Path;
@@ -18,14 +18,8 @@ pub trait Progressive: Sync {
     /// meanwhile), with the metadata made from its statistics.
     fn checkpoint(&self, path: &Path, metadata: &dyn Fn(&RenderStats) -> Metadata) -> Result<(), String>;
 
-    /// Writes the image as it stands to `path`, with the data channels `data`.
-    fn write_image(
-        &self,
-        path: &Path,
-        tonemap: &ToneMap,
-        metadata: &Metadata,
-        data: Option<&DataLayer>,
-    ) -> Result<(), String>;
+    /// The film as it stands (the image to write).
+    fn snapshot_film(&self) -> Film;
 }
 
 /// The path tracer's render to a goal.
@@ -44,14 +38,8 @@ impl Progressive for PathRender<'_> {
         write_checkpoint(path, &film, &targets, &metadata(&stats)).map_err(|e| format!("checkpoint: {e}"))
     }
 
-    fn write_image(
-        &self,
-        path: &Path,
-        tonemap: &ToneMap,
-        metadata: &Metadata,
-        data: Option<&DataLayer>,
-    ) -> Result<(), String> {
-        write_image_with_data(&self.renderer.snapshot().0, data, path, tonemap, metadata).map_err(|e| e.to_string())
+    fn snapshot_film(&self) -> Film {
+        self.renderer.snapshot().0
     }
 }
 
@@ -65,13 +53,7 @@ impl Progressive for PhotonRenderer<'_> {
         self.write_checkpoint(path, &state, &metadata(&stats)).map_err(|e| format!("checkpoint: {e}"))
     }
 
-    fn write_image(
-        &self,
-        path: &Path,
-        tonemap: &ToneMap,
-        metadata: &Metadata,
-        data: Option<&DataLayer>,
-    ) -> Result<(), String> {
-        write_image_with_data(&self.film(&self.snapshot().0), data, path, tonemap, metadata).map_err(|e| e.to_string())
+    fn snapshot_film(&self) -> Film {
+        self.film(&self.snapshot().0)
     }
 }
