@@ -56,8 +56,8 @@ fn disk_scene(shifts: &str) -> String {
     format!(
         "[spacetime]\ntype = \"kerr\"\nmass = 1\nspin = 0.9\naxis = [0, 1, 0]\n\
          [camera]\nposition = [0, 17.365, 98.481]\nlook_at = [0, 0, 0]\nfov = 28\n\
-         [render]\nwidth = 48\nheight = 48\nspp = 1\nmax_depth = 1\n\
-         [accretion_disk]\nouter_radius = 20\ntemperature = 9000\n{shifts}\n"
+         [render]\nwidth = 48\nheight = 48\nspp = 1\nmax_depth = 1\n{shifts}\n\
+         [accretion_disk]\nouter_radius = 20\ntemperature = 9000\n"
     )
 }
 
@@ -167,5 +167,12 @@ fn a_lamp_ahead_of_a_moving_camera_is_the_blackbody_at_the_doppler_shifted_tempe
         }
         let rest = BlackbodyLight::new(3000.0, 1.0).unwrap().seen(1.0);
         assert!(expected.z / expected.x > 1.5 * rest.z / rest.x, "bluer");
+        // Without the Doppler toggle the lamp keeps its colour and only brightens, as D⁴.
+        let film = film_of(&text.replace("[render]\n", "[render]\ndoppler = false\n"));
+        let seen = film.pixel_f64(1, 2);
+        for (channel, want) in seen.iter().zip(rest.to_array()) {
+            let want = f64::from(want) * doppler.powi(4);
+            assert!((channel / want - 1.0).abs() < 2e-3, "v = {v}, no Doppler: {seen:?} against {rest} × D⁴");
+        }
     }
 }

@@ -267,6 +267,7 @@ impl<'s> Renderer<'s> {
             &self.propagator,
             settings.max_depth,
             settings.integrator == IntegratorKind::BruteForce,
+            settings.shown,
         );
         let outcome = loop {
             if !self.pass(&integrator, goal, cancel, progress) {

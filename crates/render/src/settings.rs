@@ -82,6 +82,8 @@ pub struct RenderSettings {
     pub geodesic_rtol: f64,
     /// Data channels written beside the colour in EXR images ([`crate::film::DataChannel`]).
     pub channels: Vec<crate::film::DataChannel>,
+    /// The frequency shifts light is shown with (`doppler`, `beaming`, `gravitational_shift`).
+    pub shown: crate::emission::Shown,
 }
 
 impl Default for RenderSettings {
@@ -100,6 +102,7 @@ impl Default for RenderSettings {
             tonemap: ToneMap::default(),
             geodesic_rtol: 1e-7,
             channels: Vec::new(),
+            shown: crate::emission::Shown::default(),
         }
     }
 }

@@ -563,3 +563,48 @@ fn projection_fields_belong_to_their_projection() {
         &["depth of field"],
     );
 }
+#[test]
+fn accretion_disks_and_blackbodies_are_checked_where_they_are_written() {
+    // CAMERA is 4 lines; the sections follow.
+    let kerr = "[spacetime]\ntype = \"kerr\"\nmass = 1\nspin = 0.9\n";
+    check(&format!("{CAMERA}[accretion_disk]\nouter_radius = 20\n"), 5, "accretion_disk", &["orbits a black hole"]);
+    check(
+        &format!("{CAMERA}{kerr}[accretion_disk]\nouter_radius = 2\n"),
+        10,
+        "accretion_disk.outer_radius",
+        &["innermost stable circular orbit", "2.32"],
+    );
+    check(
+        &format!("{CAMERA}{kerr}[accretion_disk]\nouter_radius = 20\nnormal = [0, 0, 1]\n"),
+        11,
+        "accretion_disk.normal",
+        &["equatorial plane"],
+    );
+    check(
+        &format!("{CAMERA}{kerr}[render]\nintegrator = \"photon\"\n[accretion_disk]\nouter_radius = 20\n"),
+        10,
+        "render.integrator",
+        &["cannot follow how a blackbody's or an accretion disk's colour shifts"],
+    );
+    check(
+        &format!("{CAMERA}[render]\nintegrator = \"photon\"\ndoppler = false\n"),
+        7,
+        "render.doppler",
+        &["shows every frequency shift"],
+    );
+    check(
+        &object("{ type = \"sphere\", center = [0, 0, 0], radius = 1 }", "emission = { temperature = 50 }\n"),
+        7,
+        "objects[0].emission.temperature",
+        &["at least 100 K"],
+    );
+    check(
+        &object(
+            "{ type = \"sphere\", center = [0, 0, 0], radius = 1 }",
+            "emission = { temperature = 3000, radiance = 1 }\n",
+        ),
+        7,
+        "objects[0].emission.temperature",
+        &["not both"],
+    );
+}

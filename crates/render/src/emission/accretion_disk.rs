@@ -5,33 +5,15 @@
 //! Seen by a receiver at frequency ratio `g` (to the local observer at the disk), the gas, moving
 //! at `v` relative to that observer, emits at the Doppler ratio `δ = 1/(γ(1 − v·n))` towards the
 //! receiver (`n` the direction the light leaves in): the ring is seen as the blackbody at
-//! `g δ T`. The teaching toggles take the parts apart: without `doppler` the colour is the one
-//! the gas would show at rest (the *Interstellar* disk), without `beaming` its brightness is;
-//! without `gravitational_shift` the light keeps the colour and brightness it left with, as the
-//! local observer sees it.
+//! `g δ T`. The teaching toggles ([`super::Shown`]) take the parts apart: without `doppler` the
+//! colour is the one the gas would show at rest (the *Interstellar* disk), without `beaming` its
+//! brightness is; without `gravitational_shift` gravity changes neither.
 
 use super::Seen;
 use crate::color::Rgb;
 use crate::geometry::Vec3;
 use crate::spectrum::BlackbodyColours;
 use spacetime::disk::ThinDisk;
-
-/// Which frequency shifts the disk's light is seen with.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct DiskShifts {
-    /// The gas's motion shifts the colour.
-    pub doppler: bool,
-    /// The gas's motion shifts the brightness (relativistic beaming).
-    pub beaming: bool,
-    /// Gravity (and the receiver's own motion) shift colour and brightness.
-    pub gravitational: bool,
-}
-
-impl Default for DiskShifts {
-    fn default() -> Self {
-        Self { doppler: true, beaming: true, gravitational: true }
-    }
-}
 
 /// An accretion disk's emission.
 #[derive(Debug)]
@@ -44,22 +26,14 @@ pub struct DiskLight {
     peak_flux: f64,
     /// `luminance / Y(B(T_peak))`: the hottest ring has `luminance` at rest.
     scale: f64,
-    shifts: DiskShifts,
     /// Luminance at rest averaged over the disk's area.
     mean_luminance: f64,
 }
 
 impl PartialEq for DiskLight {
     fn eq(&self, other: &Self) -> bool {
-        (self.disk.orbits(), self.disk.outer_radius(), self.axis, self.peak_temperature, self.scale, self.shifts)
-            == (
-                other.disk.orbits(),
-                other.disk.outer_radius(),
-                other.axis,
-                other.peak_temperature,
-                other.scale,
-                other.shifts,
-            )
+        (self.disk.orbits(), self.disk.outer_radius(), self.axis, self.peak_temperature, self.scale)
+            == (other.disk.orbits(), other.disk.outer_radius(), other.axis, other.peak_temperature, other.scale)
     }
 }
 
@@ -67,7 +41,7 @@ impl DiskLight {
     /// The disk `disk` turning about the world unit vector `axis`, its hottest ring at
     /// `peak_temperature` kelvin with luminance `luminance` at rest; `None` where the
     /// temperature emits nothing visible (below 100 K) or the luminance is negative.
-    pub fn new(disk: ThinDisk, axis: Vec3, peak_temperature: f64, luminance: f64, shifts: DiskShifts) -> Option<Self> {
+    pub fn new(disk: ThinDisk, axis: Vec3, peak_temperature: f64, luminance: f64) -> Option<Self> {
         let colours = BlackbodyColours::get();
         let y_peak = colours.luminance(peak_temperature);
         if !(y_peak > 0.0 && peak_temperature.is_finite() && luminance >= 0.0 && luminance.is_finite()) {
@@ -75,7 +49,7 @@ impl DiskLight {
         }
         let (_, peak_flux) = disk.peak();
         let mut light =
-            Self { disk, axis, peak_temperature, peak_flux, scale: luminance / y_peak, shifts, mean_luminance: 0.0 };
+            Self { disk, axis, peak_temperature, peak_flux, scale: luminance / y_peak, mean_luminance: 0.0 };
         light.mean_luminance = light.average_luminance();
         Some(light)
     }
@@ -129,10 +103,7 @@ impl DiskLight {
         if temperature == 0.0 {
             return Rgb::ZERO;
         }
-        let doppler = self.doppler(r, dir, seen);
-        let gravity = if self.shifts.gravitational { seen.g } else { 1.0 };
-        let colour_g = gravity * if self.shifts.doppler { doppler } else { 1.0 };
-        let brightness_g = gravity * if self.shifts.beaming { doppler } else { 1.0 };
+        let (colour_g, brightness_g) = seen.shift.shown(self.doppler(r, dir, seen));
         let (rgb, _) = BlackbodyColours::get().at(colour_g * temperature);
         let scale = self.scale * (brightness_g / colour_g).powi(4);
         Rgb::from_array(rgb.map(|c| (c * scale) as f32))

@@ -10,9 +10,11 @@
 
 mod accretion_disk;
 mod blackbody;
+mod shift;
 
-pub use accretion_disk::{DiskLight, DiskShifts};
+pub use accretion_disk::DiskLight;
 pub use blackbody::BlackbodyLight;
+pub use shift::{Shift, Shown};
 
 use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
@@ -55,12 +57,12 @@ pub enum Profile {
 }
 
 /// Where emitted light is seen from: the emitting point (world, in `region`) and the frequency
-/// ratio `g = ν_seen / ν_local` the receiver sees it with.
+/// ratio `g = ν_seen / ν_local` the receiver sees it with, in its parts.
 #[derive(Clone, Copy)]
 pub struct Seen<'a> {
     pub region: Region,
     pub point: Vec3,
-    pub g: f64,
+    pub shift: Shift,
     /// Asked for the motion of moving emitters relative to the local observer.
     pub propagator: &'a Propagator,
 }
@@ -115,8 +117,11 @@ impl Emission {
             return Rgb::ZERO;
         }
         let radiance = match &self.radiance {
-            Radiance::Rgb(rgb) => *rgb * (seen.g * seen.g * seen.g * seen.g) as f32,
-            Radiance::Blackbody(light) => light.seen(seen.g),
+            Radiance::Rgb(rgb) => *rgb * seen.shift.brightness_factor(),
+            Radiance::Blackbody(light) => {
+                let (colour, brightness) = seen.shift.shown(1.0);
+                light.seen(colour) * (brightness / colour).powi(4) as f32
+            }
             Radiance::Disk(disk) => disk.seen(dir, seen),
         };
         radiance * factor as f32
@@ -165,7 +170,7 @@ mod tests {
     #[test]
     fn a_spot_emits_its_intensity_in_its_cone_and_its_exitance_integrates() {
         let propagator = flat();
-        let at = Seen { region: Region::Upper, point: Vec3::ZERO, g: 1.0, propagator: &propagator };
+        let at = Seen { region: Region::Upper, point: Vec3::ZERO, shift: Shift::NONE, propagator: &propagator };
         let (inner, outer) = (20f64.to_radians(), 35f64.to_radians());
         let spot = Emission {
             radiance: Radiance::Rgb(Rgb::splat(2.0)),
@@ -201,7 +206,12 @@ mod tests {
     #[test]
     fn rgb_brightens_as_g_to_the_fourth_and_a_blackbody_turns_hotter() {
         let propagator = flat();
-        let at = |g: f64| Seen { region: Region::Upper, point: Vec3::ZERO, g, propagator: &propagator };
+        let at = |g: f64| Seen {
+            region: Region::Upper,
+            point: Vec3::ZERO,
+            shift: Shift { gravity: g, ..Shift::NONE },
+            propagator: &propagator,
+        };
         let lamp = Emission::uniform(Rgb::new(1.0, 0.5, 0.25), false);
         assert_eq!(lamp.seen(Vec3::Z, Vec3::Z, &at(2.0)), Rgb::new(16.0, 8.0, 4.0));
         let light = BlackbodyLight::new(3000.0, 1.0).unwrap();

@@ -15,7 +15,7 @@
 use super::light::{Bounce, LightSampling, Lit, Shading};
 use super::stats::PathStats;
 use crate::color::Rgb;
-use crate::emission::Seen;
+use crate::emission::{Seen, Shift, Shown};
 use crate::geometry::{Frame, Vec3};
 use crate::propagator::{Arrival, Propagator, RayEnd};
 use crate::sampling::Sampler;
@@ -31,13 +31,15 @@ pub struct PathIntegrator<'a> {
     propagator: &'a Propagator,
     max_depth: u32,
     light_sampling: LightSampling,
+    /// The frequency shifts light is shown with (the teaching toggles).
+    shown: Shown,
 }
 
 impl<'a> PathIntegrator<'a> {
     /// `brute_force` disables light sampling everywhere (the unbiased reference).
-    pub fn new(world: &'a World, propagator: &'a Propagator, max_depth: u32, brute_force: bool) -> Self {
+    pub fn new(world: &'a World, propagator: &'a Propagator, max_depth: u32, brute_force: bool, shown: Shown) -> Self {
         let light_sampling = LightSampling::new(propagator, brute_force);
-        Self { world, propagator, max_depth, light_sampling }
+        Self { world, propagator, max_depth, light_sampling, shown }
     }
 
     /// Radiance arriving at `origin` (in `region`) from the local-frame direction `direction`
@@ -55,23 +57,23 @@ impl<'a> PathIntegrator<'a> {
         // Product of η² over refractions: undoes the radiance scaling for the roulette decision,
         // so a path through clear glass is never killed for having entered it (pbrt-v4 §13.4.4).
         let mut eta_scale = 1.0f64;
-        let mut g = doppler;
+        let mut shift = Shift::at_camera(doppler, self.shown);
         let (mut region, mut origin, mut direction) = (region, origin, direction);
         let mut bounce = Bounce { pdf: 0.0, specular: true, from: origin, direction };
         let mut depth = 0;
         loop {
             stats.rays += 1;
             let end = self.propagator.trace(self.world, region, origin, direction);
-            let arrival = match segment_end(self.world, end, g, stats) {
+            let arrival = match segment_end(self.world, end, shift, stats) {
                 SegmentEnd::Surface(a) => a,
                 SegmentEnd::Sky(sky) => return radiance + beta * sky,
             };
-            g /= arrival.energy;
+            shift = shift.after(arrival.energy);
             let object = self.world.object(arrival.region, arrival.object);
             let hit = &arrival.hit;
             let ng = arrival.ng_local;
             if let Some(emission) = &object.emission {
-                let seen = Seen { region: arrival.region, point: hit.p, g, propagator: self.propagator };
+                let seen = Seen { region: arrival.region, point: hit.p, shift, propagator: self.propagator };
                 let le = emission.seen(ng, -arrival.direction, &seen);
                 if le != Rgb::ZERO {
                     let weight = self.light_sampling.emitter_weight(self.lit(), &arrival, ng, &bounce);
@@ -89,7 +91,7 @@ impl<'a> PathIntegrator<'a> {
             let frame = Frame::from_normal(ns);
             let wo = frame.to_local(-arrival.direction);
             if !bsdf.is_delta() {
-                let shading = Shading { bsdf: &bsdf, frame: &frame, wo, ng, g };
+                let shading = Shading { bsdf: &bsdf, frame: &frame, wo, ng, shift };
                 radiance += beta * self.light_sampling.direct(self.lit(), &arrival, &shading, sampler, stats);
             }
             let Some(sample) = bsdf.sample(wo, sampler.next_f64(), sampler.next_2d()) else {
@@ -104,7 +106,7 @@ impl<'a> PathIntegrator<'a> {
             eta_scale *= sample.eta * sample.eta;
             // What the path can still bring the camera scales with g⁴ as well (the brightness
             // of light seen at ratio g), so paths into redshifted depths are cut as before.
-            let rr_beta = f64::from(beta.max_element()) * eta_scale * g.powi(4);
+            let rr_beta = f64::from(beta.max_element()) * eta_scale * shift.ratio().powi(4);
             if depth >= ROULETTE_START && rr_beta < 1.0 {
                 // Survive with probability equal to the throughput: paths that still carry
                 // everything are never cut.
@@ -135,8 +137,8 @@ pub(super) enum SegmentEnd {
 }
 
 /// Sorts a traced segment's end, counting the fate of a path that ends there; the sky is seen
-/// at the path's frequency ratio `g` at the segment's start.
-pub(super) fn segment_end(world: &World, end: RayEnd, g: f64, stats: &mut PathStats) -> SegmentEnd {
+/// with the path's frequency ratio `shift` at the segment's start.
+pub(super) fn segment_end(world: &World, end: RayEnd, shift: Shift, stats: &mut PathStats) -> SegmentEnd {
     match end {
         RayEnd::Hit(arrival) => SegmentEnd::Surface(arrival),
         RayEnd::Escaped { region, direction, traversed, energy } => {
@@ -145,7 +147,7 @@ pub(super) fn segment_end(world: &World, end: RayEnd, g: f64, stats: &mut PathSt
             } else {
                 stats.fates.escaped += 1;
             }
-            SegmentEnd::Sky(shift(energy / g) * world.sky(region).radiance(direction))
+            SegmentEnd::Sky(shift.after(energy).brightness_factor() * world.sky(region).radiance(direction))
         }
         RayEnd::Captured => {
             stats.fates.captured += 1;

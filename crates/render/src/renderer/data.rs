@@ -1,7 +1,7 @@
 //! The data channels of a render ([`crate::film::data`]): one camera ray through each pixel's
 //! centre, traced in parallel, and what it met first.
 
-use crate::emission::{Radiance, Seen};
+use crate::emission::{Radiance, Seen, Shift};
 use crate::film::{DataChannel, DataLayer, FirstMet, PixelData};
 use crate::propagator::{Propagator, RayEnd};
 use crate::scene::Scene;
@@ -37,7 +37,8 @@ fn pixel(scene: &Scene, propagator: &Propagator, pixel: [u32; 2]) -> PixelData {
             };
             match &emission.radiance {
                 Radiance::Disk(disk) => {
-                    let seen = Seen { region: arrival.region, point: arrival.hit.p, g, propagator };
+                    let shift = Shift { gravity: g, ..Shift::NONE };
+                    let seen = Seen { region: arrival.region, point: arrival.hit.p, shift, propagator };
                     let r = disk.radius(arrival.hit.p);
                     let doppler = disk.doppler(r, -arrival.direction, &seen);
                     PixelData { redshift: g * doppler, fate: FirstMet::Emitter, disk_radius: r }

@@ -5,7 +5,7 @@
 use super::Builder;
 use crate::reader::{num, Node, Result};
 use render::color::Rgb;
-use render::emission::{DiskLight, DiskShifts, Emission, Profile, Radiance};
+use render::emission::{DiskLight, Emission, Profile, Radiance};
 use render::geometry::Vec3;
 use render::material::Material;
 use render::shape::Shape;
@@ -16,8 +16,7 @@ use spacetime::disk::ThinDisk;
 use spacetime::Spacetime;
 use std::sync::Arc;
 
-pub(super) const KEYS: &[&str] =
-    &["outer_radius", "temperature", "luminance", "normal", "doppler", "beaming", "gravitational_shift"];
+pub(super) const KEYS: &[&str] = &["outer_radius", "temperature", "luminance", "normal"];
 
 /// The hottest ring's temperature, K, unless the file says: a white-blue disk.
 const DEFAULT_TEMPERATURE: f64 = 10_000.0;
@@ -54,12 +53,7 @@ impl Builder<'_> {
         }
         let temperature = t.or("temperature", DEFAULT_TEMPERATURE, |n| n.f64())?;
         let luminance = t.or("luminance", 1.0, |n| n.f64())?;
-        let shifts = DiskShifts {
-            doppler: t.or("doppler", true, |n| n.bool())?,
-            beaming: t.or("beaming", true, |n| n.bool())?,
-            gravitational: t.or("gravitational_shift", true, |n| n.bool())?,
-        };
-        let light = DiskLight::new(ThinDisk::new(orbits, outer), normal, temperature, luminance, shifts)
+        let light = DiskLight::new(ThinDisk::new(orbits, outer), normal, temperature, luminance)
             .ok_or_else(|| t.loc("temperature").err("the temperature must be at least 100 K and the luminance ≥ 0"))?;
         if !(luminance >= 0.0 && luminance.is_finite()) {
             return Err(t.loc("luminance").err(format!("must be ≥ 0, got {}", num(luminance))));

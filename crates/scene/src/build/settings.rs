@@ -1,6 +1,7 @@
 //! `[render]`: image size, sampling, integrator, reconstruction filter and tone mapping.
 
 use crate::reader::{num, Node, Result, Table};
+use render::emission::Shown;
 use render::film::{Curve, DataChannel, Filter, FilterError, ToneMap, MITCHELL_RECOMMENDED_B_C};
 use render::integrator::photon;
 use render::settings::{Connector, IntegratorKind, Intersection, PhotonSettings, RenderSettings};
@@ -24,6 +25,9 @@ pub(super) const RENDER_KEYS: &[&str] = &[
     "tonemap",
     "filter",
     "channels",
+    "doppler",
+    "beaming",
+    "gravitational_shift",
 ];
 
 /// The largest image side accepted (as the command line's `--width`/`--height`).
@@ -111,7 +115,27 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
             Some(n) => channels(&n)?,
             None => Vec::new(),
         },
+        shown: shown(t, integrator)?,
     })
+}
+
+/// `doppler`, `beaming`, `gravitational_shift`: the teaching toggles, each on by default. Photon
+/// mapping carries its photons' power with every shift in, so it takes none of them off.
+fn shown(t: &Table<'_>, integrator: IntegratorKind) -> Result<Shown> {
+    let shown = Shown {
+        doppler: t.or("doppler", true, |n| n.bool())?,
+        beaming: t.or("beaming", true, |n| n.bool())?,
+        gravitational: t.or("gravitational_shift", true, |n| n.bool())?,
+    };
+    if integrator == IntegratorKind::Photon && shown != Shown::default() {
+        let key = ["doppler", "beaming", "gravitational_shift"].into_iter().find(|k| t.get(k).is_some());
+        let message = "\"photon\" shows every frequency shift; switching one off needs \"path\" or \"brute-force\"";
+        return Err(match key {
+            Some(key) => t.loc(key).err(message),
+            None => t.err(message),
+        });
+    }
+    Ok(shown)
 }
 
 /// `channels = ["redshift", "fate", "disk_radius"]`: data channels for EXR images, each once.

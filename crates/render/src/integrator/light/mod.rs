@@ -57,7 +57,7 @@ pub(super) struct Shading<'b> {
     /// Geometric normal in the local frame.
     pub ng: Vec3,
     /// The path's frequency ratio `ν_camera / ν_local` here.
-    pub g: f64,
+    pub shift: crate::emission::Shift,
 }
 
 /// Where the previous bounce left from, for the MIS weight of an emitter hit by BSDF sampling.
@@ -123,15 +123,15 @@ impl LightSampling {
 /// The MIS-weighted contribution of light arriving from local-frame direction `wi` (sampled
 /// with solid-angle density `pdf`), if `visible` finds it unblocked and returns the photon's
 /// energy at the light relative to the shading point's (`E_light / E_here`, as
-/// [`Arrival::energy`]); `emitted` gives the light's radiance seen at a frequency ratio
-/// `ν_camera / ν_light`. The BSDF is evaluated first, so blocked-or-not is only asked where it
+/// [`Arrival::energy`]); `emitted` gives the light's radiance seen with the path's frequency
+/// ratio at the light. The BSDF is evaluated first, so blocked-or-not is only asked where it
 /// reflects anything.
 pub(super) fn contribution(
     shading: &Shading<'_>,
     wi: Vec3,
     pdf: f64,
     visible: impl FnOnce() -> Option<f64>,
-    emitted: impl FnOnce(f64) -> Rgb,
+    emitted: impl FnOnce(crate::emission::Shift) -> Rgb,
 ) -> Rgb {
     let wi_local = shading.frame.to_local(wi);
     let f = shading.bsdf.f(shading.wo, wi_local) * wi_local.z.abs() as f32;
@@ -139,7 +139,7 @@ pub(super) fn contribution(
         return Rgb::ZERO;
     }
     let Some(energy) = visible() else { return Rgb::ZERO };
-    let le = emitted(shading.g / energy);
+    let le = emitted(shading.shift.after(energy));
     if le == Rgb::ZERO {
         return Rgb::ZERO;
     }

@@ -2,7 +2,7 @@
 
 use super::Lit;
 use crate::color::Rgb;
-use crate::emission::Seen;
+use crate::emission::{Seen, Shift};
 use crate::geometry::Vec3;
 use crate::integrator::path::leave;
 use crate::integrator::stats::PathStats;
@@ -35,9 +35,9 @@ impl LightPoint<'_> {
     }
 
     /// The radiance leaving the point in local direction `dir` (surface normal `normal` in
-    /// the local frame), seen at frequency ratio `g`.
-    pub fn seen(&self, normal: Vec3, dir: Vec3, g: f64, lit: Lit<'_>) -> Rgb {
-        let seen = Seen { region: self.region, point: self.point, g, propagator: lit.propagator };
+    /// the local frame), seen with frequency ratio `shift`.
+    pub fn seen(&self, normal: Vec3, dir: Vec3, shift: Shift, lit: Lit<'_>) -> Rgb {
+        let seen = Seen { region: self.region, point: self.point, shift, propagator: lit.propagator };
         self.emission.seen(normal, dir, &seen)
     }
 }

@@ -9,7 +9,7 @@
 use super::super::path::{leave, shift};
 use super::super::stats::PathStats;
 use crate::color::Rgb;
-use crate::emission::Seen;
+use crate::emission::{Seen, Shift};
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::{Propagator, RayEnd};
@@ -102,7 +102,7 @@ pub(super) fn radiance(
         let hit = &arrival.hit;
         ng_local = arrival.ng_local;
         if let Some(emission) = object.emission.as_ref().filter(|_| !object.shape.area().is_finite()) {
-            let rest = Seen { region: arrival.region, point: hit.p, g: 1.0, propagator };
+            let rest = Seen { region: arrival.region, point: hit.p, shift: Shift::NONE, propagator };
             radiance += beta * emission.seen(ng_local, -arrival.direction, &rest);
         }
         (region, p, ng, depth) = (arrival.region, hit.p, hit.ng, depth + 1);

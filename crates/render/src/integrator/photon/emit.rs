@@ -18,7 +18,7 @@ use super::aim::{self, Target};
 use super::sky::SkySource;
 use super::slot;
 use crate::color::Rgb;
-use crate::emission::Seen;
+use crate::emission::{Seen, Shift};
 use crate::geometry::Vec3;
 use crate::propagator::Propagator;
 use crate::sampling::Rng;
@@ -157,7 +157,8 @@ pub(super) fn emit(
         region,
         origin: leave(point, normal, local_normal, aimed.direction),
         direction: aimed.direction,
-        power: emission.seen(local_normal, aimed.direction, &Seen { region, point, g: 1.0, propagator }) * scale as f32,
+        power: emission.seen(local_normal, aimed.direction, &Seen { region, point, shift: Shift::NONE, propagator })
+            * scale as f32,
     })
 }
 

@@ -10,7 +10,7 @@ use super::super::path::{leave, segment_end, shift, SegmentEnd};
 use super::super::stats::PathStats;
 use super::background::{self, Background, Vertex};
 use crate::color::Rgb;
-use crate::emission::Seen;
+use crate::emission::{Seen, Shift};
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::Propagator;
@@ -71,18 +71,22 @@ impl CameraPass<'_> {
         let mut depth = 0;
         loop {
             stats.rays += 1;
-            let arrival =
-                match segment_end(self.world, self.propagator.trace(self.world, region, origin, direction), 1.0, stats)
-                {
-                    SegmentEnd::Surface(a) => a,
-                    SegmentEnd::Sky(sky) => return CameraSample { emitted: emitted + beta * sky, visible: None },
-                };
+            let arrival = match segment_end(
+                self.world,
+                self.propagator.trace(self.world, region, origin, direction),
+                Shift::NONE,
+                stats,
+            ) {
+                SegmentEnd::Surface(a) => a,
+                SegmentEnd::Sky(sky) => return CameraSample { emitted: emitted + beta * sky, visible: None },
+            };
             beta *= shift(arrival.energy);
             let object = self.world.object(arrival.region, arrival.object);
             let hit = &arrival.hit;
             let ng = arrival.ng_local;
             if let Some(emission) = &object.emission {
-                let rest = Seen { region: arrival.region, point: hit.p, g: 1.0, propagator: self.propagator };
+                let rest =
+                    Seen { region: arrival.region, point: hit.p, shift: Shift::NONE, propagator: self.propagator };
                 emitted += beta * emission.seen(ng, -arrival.direction, &rest);
             }
             // Camera paths end at a visible point or at the depth limit: either way at a surface.
