@@ -285,12 +285,6 @@ impl Propagator {
         measured.ok().map(|v| self.to_world(Vec3::from_array(v)))
     }
 
-    /// The world direction of the spacetime's symmetry axis (a spinning hole's spin), where it
-    /// has one.
-    pub fn axis(&self) -> Option<Vec3> {
-        self.to_chart.map(|q| q.inverse() * Vec3::Z)
-    }
-
     /// The local observer's frame at world point `p` of `region` ([`Capabilities::local_frame`]).
     fn local_frame(&self, region: Region, p: Vec3) -> LocalFrame {
         self.spacetime.capabilities().local_frame(region, self.to_chart(p).to_array())

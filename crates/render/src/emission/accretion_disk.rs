@@ -9,6 +9,7 @@
 //! colour is the one the gas would show at rest (the *Interstellar* disk), without `beaming` its
 //! brightness is; without `gravitational_shift` gravity changes neither.
 
+use super::blackbody::planck_shown;
 use super::Seen;
 use crate::color::Rgb;
 use crate::geometry::Vec3;
@@ -52,10 +53,6 @@ impl DiskLight {
             Self { disk, axis, peak_temperature, peak_flux, scale: luminance / y_peak, mean_luminance: 0.0 };
         light.mean_luminance = light.average_luminance();
         Some(light)
-    }
-
-    pub fn disk(&self) -> &ThinDisk {
-        &self.disk
     }
 
     /// The world radii of the disk's edges (in the chart's equatorial plane).
@@ -103,10 +100,7 @@ impl DiskLight {
         if temperature == 0.0 {
             return Rgb::ZERO;
         }
-        let (colour_g, brightness_g) = seen.shift.shown(self.doppler(r, dir, seen));
-        let (rgb, _) = BlackbodyColours::get().at(colour_g * temperature);
-        let scale = self.scale * (brightness_g / colour_g).powi(4);
-        Rgb::from_array(rgb.map(|c| (c * scale) as f32))
+        planck_shown(temperature, self.scale, seen.shift.shown(self.doppler(r, dir, seen)))
     }
 
     /// Luminance at rest averaged over the disk's area (midpoint rule in world radius).

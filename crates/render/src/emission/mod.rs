@@ -118,10 +118,7 @@ impl Emission {
         }
         let radiance = match &self.radiance {
             Radiance::Rgb(rgb) => *rgb * seen.shift.brightness_factor(),
-            Radiance::Blackbody(light) => {
-                let (colour, brightness) = seen.shift.shown(1.0);
-                light.seen(colour) * (brightness / colour).powi(4) as f32
-            }
+            Radiance::Blackbody(light) => light.shown(seen.shift.shown(1.0)),
             Radiance::Disk(disk) => disk.seen(dir, seen),
         };
         radiance * factor as f32

@@ -15,7 +15,8 @@ use std::sync::OnceLock;
 
 /// Coolest tabulated temperature, K: its luminance is ~10⁻¹¹³ of 6500 K's.
 const T_MIN: f64 = 100.0;
-/// Hottest tabulated temperature, K: `hc/(λkT)` is 3·10⁻⁴ at 400 nm, Rayleigh–Jeans to 0.02 %.
+/// Hottest tabulated temperature, K: far into the Rayleigh–Jeans regime over the visible
+/// (`hc/(λkT) ≪ 1` at 360 nm), where `B_λ ∝ T` and the colour no longer changes.
 const T_MAX: f64 = 1e8;
 /// Entries, even in `ln T`.
 const ENTRIES: usize = 8192;
