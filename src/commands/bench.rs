@@ -19,6 +19,10 @@ pub enum Workload {
     /// The poster's room with its black hole, and the same room with mass 0 (256², 64 spp,
     /// depth 8): the ratio of their times is the cost of curved spacetime.
     Room,
+    /// The poster's room with its black hole rendered in RGB and spectrally (paths carrying
+    /// sampled wavelengths; 256², 64 spp, depth 8): the ratio of their times is the cost of
+    /// spectral rendering.
+    Spectral,
     /// The room with its black hole and millions of triangles: a rock of a million triangles
     /// and twelve instances of another (256², 16 spp, depth 8): BVH build time, memory per
     /// triangle, rays/s.
@@ -128,6 +132,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             scene_bench(args, "cornell", cornell)
         }
         Workload::Room => room(args),
+        Workload::Spectral => spectral(args),
         Workload::Mesh => mesh_bench(args),
         Workload::Preview => preview_first_frame(args),
         Workload::Disk => disk(args),
@@ -139,33 +144,60 @@ pub fn run(args: &Args) -> Result<(), String> {
 /// than a tenth, falls on both alike: the cost of curved spacetime is the median of the ratios
 /// of the pairs on all threads.
 fn room(args: &Args) -> Result<(), String> {
-    let curved = scene::parse(ROOM_SCENE, "scenes/room-black-hole.toml", std::path::Path::new("."))
-        .map_err(|e| e.to_string())?;
+    let curved = room_scene()?;
     let flat =
         render::scene::Scene { spacetime: spacetime::Spacetime::Minkowski(spacetime::Minkowski), ..curved.clone() };
-    let names = ["room (black hole)", "room (mass 0)"];
-    let scenes = [workload(args, curved), workload(args, flat)];
-    let (rows, turns) = in_turn(args, &scenes)?;
-    let ratios: Vec<f64> = turns.iter().map(|[curved, flat]| curved / flat).collect();
-    let median = median(&ratios);
-    if args.json {
-        let [curved, flat] = [0, 1].map(|i| report_json(names[i], &scenes[i], &rows[i]));
-        println!(
-            "{}",
-            serde_json::json!({ "workload": "room", "curved": curved, "flat": flat,
-                "curved_over_flat": { "median": median, "pairs": ratios } })
-        );
-    } else {
-        for ((name, scene), rows) in names.iter().zip(&scenes).zip(&rows) {
-            report_text(name, scene, rows);
+    let pair = Pair { workload: "room", names: ["room (black hole)", "room (mass 0)"], ratio: ("curved", "flat") };
+    pair.run(args, [curved, flat])
+}
+
+/// The room with its black hole in spectral and in RGB rendering, in turn as [`room`]'s pair.
+fn spectral(args: &Args) -> Result<(), String> {
+    let rgb = room_scene()?;
+    let mut spectral = rgb.clone();
+    spectral.settings.spectral = true;
+    let pair = Pair { workload: "spectral", names: ["room (spectral)", "room (RGB)"], ratio: ("spectral", "rgb") };
+    pair.run(args, [spectral, rgb])
+}
+
+fn room_scene() -> Result<render::scene::Scene, String> {
+    scene::parse(ROOM_SCENE, "scenes/room-black-hole.toml", std::path::Path::new(".")).map_err(|e| e.to_string())
+}
+
+/// Two scenes rendered in turn, reported with the median ratio of their times.
+struct Pair {
+    workload: &'static str,
+    names: [&'static str; 2],
+    /// What the first and the second are called in the ratio (`first_over_second` in JSON).
+    ratio: (&'static str, &'static str),
+}
+
+impl Pair {
+    fn run(&self, args: &Args, scenes: [render::scene::Scene; 2]) -> Result<(), String> {
+        let scenes = scenes.map(|scene| workload(args, scene));
+        let (rows, turns) = in_turn(args, &scenes)?;
+        let ratios: Vec<f64> = turns.iter().map(|[first, second]| first / second).collect();
+        let median = median(&ratios);
+        let (first, second) = self.ratio;
+        if args.json {
+            let [a, b] = [0, 1].map(|i| report_json(self.names[i], &scenes[i], &rows[i]));
+            let mut v = serde_json::json!({ "workload": self.workload });
+            v[first] = a;
+            v[second] = b;
+            v[format!("{first}_over_{second}")] = serde_json::json!({ "median": median, "pairs": ratios });
+            println!("{v}");
+        } else {
+            for ((name, scene), rows) in self.names.iter().zip(&scenes).zip(&rows) {
+                report_text(name, scene, rows);
+            }
+            let pairs = ratios.iter().map(|r| format!("{r:.2}")).collect::<Vec<_>>().join(", ");
+            println!(
+                "{first} ÷ {second} time, all threads: {median:.2} (median of {} interleaved pairs: {pairs})",
+                ratios.len()
+            );
         }
-        let pairs = ratios.iter().map(|r| format!("{r:.2}")).collect::<Vec<_>>().join(", ");
-        println!(
-            "curved ÷ flat time, all threads: {median:.2} (median of {} interleaved pairs: {pairs})",
-            ratios.len()
-        );
+        Ok(())
     }
-    Ok(())
 }
 
 /// The accretion disk at `--size`² (default 512), one ray per pixel.
@@ -186,8 +218,7 @@ fn disk(args: &Args) -> Result<(), String> {
 /// The room with millions of triangles (see [`mesh`]): what building it took, then its renders
 /// in turn with the room's own, whose ratio is the cost of the triangles.
 fn mesh_bench(args: &Args) -> Result<(), String> {
-    let room = scene::parse(ROOM_SCENE, "scenes/room-black-hole.toml", std::path::Path::new("."))
-        .map_err(|e| e.to_string())?;
+    let room = room_scene()?;
     let built = mesh::build(room.clone())?;
     let scenes = [built.scene, room].map(|scene| {
         let mut scene = workload(args, scene);

@@ -63,6 +63,7 @@ fn settings_json(scene: &Scene) -> serde_json::Value {
         "geodesic_rtol": s.geodesic_rtol,
         "intersection": format!("{:?}", s.intersection),
         "photon": format!("{:?}", s.photon),
+        "spectral": s.spectral,
     })
 }
 

@@ -129,6 +129,11 @@ pub struct RenderOptions {
     /// Checked before rendering, from the image size.
     #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
     max_memory: Option<u64>,
+    /// Render spectrally, as the scene's `[render] spectral = true`: paths carry sampled
+    /// wavelengths, so frequency shifts change every light's colour and dispersing glass splits
+    /// it. Path tracing only.
+    #[arg(long)]
+    spectral: bool,
     /// No progress bar or summary.
     #[arg(long)]
     pub quiet: bool,
@@ -197,6 +202,12 @@ impl RenderOptions {
         }
         if let Some(seed) = self.seed {
             s.seed = seed;
+        }
+        if self.spectral {
+            if s.integrator == IntegratorKind::Photon {
+                return Err("--spectral needs a path tracer: photon mapping carries RGB power".to_owned());
+            }
+            s.spectral = true;
         }
         Ok(())
     }

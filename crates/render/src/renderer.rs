@@ -262,13 +262,7 @@ impl<'s> Renderer<'s> {
     pub fn run(&self, goal: Goal, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> RenderStats {
         let start = *self.started.get_or_init(Instant::now);
         let settings = &self.scene.settings;
-        let integrator = PathIntegrator::new(
-            &self.scene.world,
-            &self.propagator,
-            settings.max_depth,
-            settings.integrator == IntegratorKind::BruteForce,
-            settings.shown,
-        );
+        let integrator = PathIntegrator::new(&self.scene.world, &self.propagator, settings);
         let outcome = loop {
             if !self.pass(&integrator, goal, cancel, progress) {
                 break Outcome::Interrupted;

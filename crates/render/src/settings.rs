@@ -84,6 +84,9 @@ pub struct RenderSettings {
     pub channels: Vec<crate::film::DataChannel>,
     /// The frequency shifts light is shown with (`doppler`, `beaming`, `gravitational_shift`).
     pub shown: crate::emission::Shown,
+    /// Paths carry radiance at sampled wavelengths instead of RGB ([`crate::spectrum::Colour`]):
+    /// frequency shifts change the colour of every light, and dispersing glass splits it.
+    pub spectral: bool,
 }
 
 impl Default for RenderSettings {
@@ -103,6 +106,7 @@ impl Default for RenderSettings {
             geodesic_rtol: 1e-7,
             channels: Vec::new(),
             shown: crate::emission::Shown::default(),
+            spectral: false,
         }
     }
 }

@@ -95,7 +95,7 @@ fn room(spacetime: Spacetime) -> Scene {
     ];
     let materials = vec![
         Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.6)) },
-        Material::Dielectric { ior: 1.5, transmittance: Texture::Constant(Rgb::ONE) },
+        Material::Dielectric { ior: 1.5, dispersion: None, transmittance: Texture::Constant(Rgb::ONE) },
     ];
     let camera = Camera::new(Region::Upper, Vec3::new(0.0, 1.0, 5.0), Vec3::ZERO, Vec3::Y, 50.0, 0.0, None).unwrap();
     let settings = RenderSettings { width: 32, height: 32, spp: 8, max_depth: 5, ..RenderSettings::default() };

@@ -608,3 +608,32 @@ fn accretion_disks_and_blackbodies_are_checked_where_they_are_written() {
         &["not both"],
     );
 }
+
+#[test]
+fn spectral_rendering_and_dispersion_are_checked_where_they_are_written() {
+    check(
+        &format!("{CAMERA}[render]\nintegrator = \"photon\"\nspectral = true\n"),
+        7,
+        "render.spectral",
+        &["carries RGB power"],
+    );
+    check(&format!("{CAMERA}[render]\nspectral = 1\n"), 6, "render.spectral", &["expected a bool"]);
+    check(
+        &object(
+            "{ type = \"sphere\", center = [0, 0, 0], radius = 1 }",
+            "material = { type = \"dielectric\", ior = 1.5, abbe = -3 }\n",
+        ),
+        7,
+        "objects[0].material.abbe",
+        &["positive Abbe number"],
+    );
+    check(
+        &object(
+            "{ type = \"sphere\", center = [0, 0, 0], radius = 1 }",
+            "material = { type = \"dielectric\", ior = 0.9, abbe = 40 }\n",
+        ),
+        7,
+        "objects[0].material.abbe",
+        &["ior > 1"],
+    );
+}

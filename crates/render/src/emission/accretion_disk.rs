@@ -9,11 +9,9 @@
 //! colour is the one the gas would show at rest (the *Interstellar* disk), without `beaming` its
 //! brightness is; without `gravitational_shift` gravity changes neither.
 
-use super::blackbody::planck_shown;
 use super::Seen;
-use crate::color::Rgb;
 use crate::geometry::Vec3;
-use crate::spectrum::BlackbodyColours;
+use crate::spectrum::{BlackbodyColours, Colour};
 use spacetime::disk::ThinDisk;
 
 /// An accretion disk's emission.
@@ -94,13 +92,13 @@ impl DiskLight {
     }
 
     /// The radiance leaving the disk at `seen.point` in local direction `dir`.
-    pub fn seen(&self, dir: Vec3, seen: &Seen<'_>) -> Rgb {
+    pub fn seen<C: Colour>(&self, dir: Vec3, seen: &Seen<'_>, lambda: &C::Lambda) -> C {
         let r = self.radius(seen.point);
         let temperature = self.temperature(r);
         if temperature == 0.0 {
-            return Rgb::ZERO;
+            return C::ZERO;
         }
-        planck_shown(temperature, self.scale, seen.shift.shown(self.doppler(r, dir, seen)))
+        C::blackbody(temperature, self.scale, seen.shift.shown(self.doppler(r, dir, seen)), lambda)
     }
 
     /// Luminance at rest averaged over the disk's area (midpoint rule in world radius).

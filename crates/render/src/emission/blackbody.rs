@@ -4,7 +4,7 @@
 //! well as its brightness.
 
 use crate::color::Rgb;
-use crate::spectrum::BlackbodyColours;
+use crate::spectrum::{BlackbodyColours, Colour};
 
 /// Planck's law at `temperature` kelvin, scaled so that its luminance at rest is `luminance`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,23 +35,14 @@ impl BlackbodyLight {
 
     /// The linear Rec. 709 radiance seen with frequency ratio `g`: the blackbody at `gT`.
     pub fn seen(&self, g: f64) -> Rgb {
-        self.shown((g, g))
+        self.shown((g, g), &())
     }
 
     /// The radiance seen with its colour shifted by one ratio and its brightness by another
-    /// ([`super::Shift::shown`]).
-    pub fn shown(&self, ratios: (f64, f64)) -> Rgb {
-        planck_shown(self.temperature, self.scale, ratios)
+    /// ([`super::Shift::shown`]), in the colours `C` at `lambda`.
+    pub fn shown<C: Colour>(&self, ratios: (f64, f64), lambda: &C::Lambda) -> C {
+        C::blackbody(self.temperature, self.scale, ratios, lambda)
     }
-}
-
-/// `scale` times the blackbody at `temperature`, its colour seen at ratio `colour` and its
-/// brightness at `brightness`: the blackbody at `colour · T`, scaled by `(brightness/colour)⁴`
-/// (1 when both are the same shift, as in nature).
-pub(super) fn planck_shown(temperature: f64, scale: f64, (colour, brightness): (f64, f64)) -> Rgb {
-    let (rgb, _) = BlackbodyColours::get().at(colour * temperature);
-    let scale = scale * (brightness / colour).powi(4);
-    Rgb::from_array(rgb.map(|c| (c * scale) as f32))
 }
 
 #[cfg(test)]

@@ -4,9 +4,10 @@
 //! Emitted light is asked for as a receiver sees it ([`Emission::seen`]): at the frequency ratio
 //! `g = ν_seen / ν_local` between the receiver and the local observer at the emitter (gravity
 //! and the receiver's motion; the path tracer multiplies the ratios along a path). Radiance
-//! transforms with `I_ν/ν³` invariant ([`crate::spectrum::shift`]): a blackbody at `T` is seen
-//! as the blackbody at `gT`, colour and brightness; an RGB colour has no spectrum to shift, so
-//! only its brightness changes, by `g⁴` (frequency-integrated radiance).
+//! transforms with `I_ν/ν³` invariant: a blackbody at `T` is seen as the blackbody at `gT`,
+//! colour and brightness; an RGB colour is lifted to a spectrum and shifted in spectral
+//! rendering, and in RGB rendering only brightened, by `g⁴` (frequency-integrated radiance):
+//! see [`crate::spectrum::Colour`].
 
 mod accretion_disk;
 mod blackbody;
@@ -19,6 +20,7 @@ pub use shift::{Shift, Shown};
 use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
 use crate::propagator::Propagator;
+use crate::spectrum::Colour;
 use spacetime::Region;
 use std::sync::Arc;
 
@@ -107,19 +109,20 @@ impl Emission {
     }
 
     /// Radiance leaving the surface with outward normal `ng` in direction `dir` (unit, in the
-    /// same frame as `ng`: the local observer's at the emitter), as seen from `seen`.
-    pub fn seen(&self, ng: Vec3, dir: Vec3, seen: &Seen<'_>) -> Rgb {
+    /// same frame as `ng`: the local observer's at the emitter), as seen from `seen`, in the
+    /// colours `C` at `lambda`.
+    pub fn seen<C: Colour>(&self, ng: Vec3, dir: Vec3, seen: &Seen<'_>, lambda: &C::Lambda) -> C {
         if !self.faces(ng, dir) {
-            return Rgb::ZERO;
+            return C::ZERO;
         }
         let factor = self.profile.factor(ng.dot(dir).abs());
         if factor == 0.0 {
-            return Rgb::ZERO;
+            return C::ZERO;
         }
         let radiance = match &self.radiance {
-            Radiance::Rgb(rgb) => *rgb * seen.shift.brightness_factor(),
-            Radiance::Blackbody(light) => light.shown(seen.shift.shown(1.0)),
-            Radiance::Disk(disk) => disk.seen(dir, seen),
+            Radiance::Rgb(rgb) => C::illuminant(*rgb, seen.shift.shown(1.0), lambda),
+            Radiance::Blackbody(light) => light.shown(seen.shift.shown(1.0), lambda),
+            Radiance::Disk(disk) => disk.seen(dir, seen, lambda),
         };
         radiance * factor as f32
     }
@@ -176,7 +179,7 @@ mod tests {
         };
         let intensity = |theta: f64| {
             let dir = Vec3::new(theta.sin(), 0.0, theta.cos());
-            f64::from(spot.seen(Vec3::Z, dir, &at).x) * theta.cos()
+            f64::from(spot.seen::<Rgb>(Vec3::Z, dir, &at, &()).x) * theta.cos()
         };
         // L·cos θ per unit area is the intensity: 2 inside the inner cone, 0 outside the outer.
         assert!((intensity(0.0) - 2.0).abs() < 1e-6 && (intensity(19f64.to_radians()) - 2.0).abs() < 1e-6);
@@ -184,7 +187,7 @@ mod tests {
         let mid = 27.5f64.to_radians();
         let s = ((mid.cos() - outer.cos()) / (inner.cos() - outer.cos())).powi(2);
         assert!((intensity(mid) - 2.0 * s).abs() < 1e-6, "{} against {}", intensity(mid), 2.0 * s);
-        assert_eq!(spot.seen(Vec3::Z, -Vec3::Z, &at), Rgb::ZERO, "one-sided");
+        assert_eq!(spot.seen::<Rgb>(Vec3::Z, -Vec3::Z, &at, &()), Rgb::ZERO, "one-sided");
         // ∫ L cos θ dω / π by the midpoint rule over θ.
         let n = 20_000;
         let h = std::f64::consts::FRAC_PI_2 / n as f64;
@@ -210,10 +213,11 @@ mod tests {
             propagator: &propagator,
         };
         let lamp = Emission::uniform(Rgb::new(1.0, 0.5, 0.25), false);
-        assert_eq!(lamp.seen(Vec3::Z, Vec3::Z, &at(2.0)), Rgb::new(16.0, 8.0, 4.0));
+        assert_eq!(lamp.seen::<Rgb>(Vec3::Z, Vec3::Z, &at(2.0), &()), Rgb::new(16.0, 8.0, 4.0));
         let light = BlackbodyLight::new(3000.0, 1.0).unwrap();
         let hot = Emission { radiance: Radiance::Blackbody(light), two_sided: false, profile: Profile::Uniform };
-        let (rest, shifted) = (hot.seen(Vec3::Z, Vec3::Z, &at(1.0)), hot.seen(Vec3::Z, Vec3::Z, &at(2.0)));
+        let seen = |g| hot.seen::<Rgb>(Vec3::Z, Vec3::Z, &at(g), &());
+        let (rest, shifted) = (seen(1.0), seen(2.0));
         assert!((luminance(rest) - 1.0).abs() < 1e-4, "luminance 1 at rest: {rest}");
         // Seen at twice the frequency it is the 6000 K blackbody, bluer: blue over red rises.
         let expected = light.seen(2.0);

@@ -61,13 +61,6 @@ impl Shift {
         let brightness = gravity * if self.shown.beaming { motion } else { 1.0 };
         (colour, brightness)
     }
-
-    /// `g⁴` of the brightness shown for light from an emitter at rest: the factor an RGB colour
-    /// (a sky, a lamp) is seen with.
-    pub fn brightness_factor(&self) -> f32 {
-        let (_, brightness) = self.shown(1.0);
-        brightness.powi(4) as f32
-    }
 }
 
 #[cfg(test)]
@@ -86,6 +79,5 @@ mod tests {
         let no_gravity = Shift { shown: Shown { gravitational: false, ..Shown::default() }, ..all };
         assert_eq!(no_gravity.shown(1.0), (1.5, 1.5));
         assert_eq!(all.after(0.25).ratio(), 3.0);
-        assert_eq!(all.brightness_factor(), 0.75f32.powi(4));
     }
 }

@@ -19,7 +19,9 @@ use crate::emission::{Seen, Shift, Shown};
 use crate::geometry::{Frame, Vec3};
 use crate::propagator::{Arrival, Propagator, RayEnd};
 use crate::sampling::Sampler;
+use crate::settings::{IntegratorKind, RenderSettings};
 use crate::shape::offset_origin;
+use crate::spectrum::{Colour, SampledSpectrum, SampledWavelengths};
 use crate::world::World;
 use spacetime::Region;
 
@@ -33,27 +35,57 @@ pub struct PathIntegrator<'a> {
     light_sampling: LightSampling,
     /// The frequency shifts light is shown with (the teaching toggles).
     shown: Shown,
+    /// Paths carry sampled wavelengths rather than RGB.
+    spectral: bool,
 }
 
 impl<'a> PathIntegrator<'a> {
-    /// `brute_force` disables light sampling everywhere (the unbiased reference).
-    pub fn new(world: &'a World, propagator: &'a Propagator, max_depth: u32, brute_force: bool, shown: Shown) -> Self {
-        let light_sampling = LightSampling::new(propagator, brute_force);
-        Self { world, propagator, max_depth, light_sampling, shown }
+    /// The integrator `settings` ask for; brute force disables light sampling everywhere (the
+    /// unbiased reference).
+    pub fn new(world: &'a World, propagator: &'a Propagator, settings: &RenderSettings) -> Self {
+        let light_sampling = LightSampling::new(propagator, settings.integrator == IntegratorKind::BruteForce);
+        Self {
+            world,
+            propagator,
+            max_depth: settings.max_depth,
+            light_sampling,
+            shown: settings.shown,
+            spectral: settings.spectral,
+        }
     }
 
     /// Radiance arriving at `origin` (in `region`) from the local-frame direction `direction`
     /// (the direction the backward ray leaves in), seen by a camera that measures frequencies
-    /// `doppler` times the local observer's there.
+    /// `doppler` times the local observer's there. A spectral path draws its wavelengths from
+    /// the sampler's next number.
     pub fn radiance(
         &self,
-        (region, origin, direction): (Region, Vec3, Vec3),
+        start: (Region, Vec3, Vec3),
         doppler: f64,
         sampler: &mut Sampler,
         stats: &mut PathStats,
     ) -> Rgb {
-        let mut radiance = Rgb::ZERO;
-        let mut beta = Rgb::ONE;
+        if self.spectral {
+            let mut lambda = SampledWavelengths::sample_visible(sampler.next_f64() as f32);
+            let radiance: SampledSpectrum = self.transport(start, doppler, &mut lambda, sampler, stats);
+            radiance.to_rgb(&lambda)
+        } else {
+            self.transport::<Rgb>(start, doppler, &mut (), sampler, stats)
+        }
+    }
+
+    /// [`PathIntegrator::radiance`] in the colours `C` at `lambda` (which a dispersing glass may
+    /// narrow to the hero wavelength).
+    fn transport<C: Colour>(
+        &self,
+        (region, origin, direction): (Region, Vec3, Vec3),
+        doppler: f64,
+        lambda: &mut C::Lambda,
+        sampler: &mut Sampler,
+        stats: &mut PathStats,
+    ) -> C {
+        let mut radiance = C::ZERO;
+        let mut beta = C::ONE;
         // Product of η² over refractions: undoes the radiance scaling for the roulette decision,
         // so a path through clear glass is never killed for having entered it (pbrt-v4 §13.4.4).
         let mut eta_scale = 1.0f64;
@@ -64,7 +96,7 @@ impl<'a> PathIntegrator<'a> {
         loop {
             stats.rays += 1;
             let end = self.propagator.trace(self.world, region, origin, direction);
-            let arrival = match segment_end(self.world, end, shift, stats) {
+            let arrival = match segment_end::<C>(self.world, end, shift, lambda, stats) {
                 SegmentEnd::Surface(a) => a,
                 SegmentEnd::Sky(sky) => return radiance + beta * sky,
             };
@@ -74,8 +106,8 @@ impl<'a> PathIntegrator<'a> {
             let ng = arrival.ng_local;
             if let Some(emission) = &object.emission {
                 let seen = Seen { region: arrival.region, point: hit.p, shift, propagator: self.propagator };
-                let le = emission.seen(ng, -arrival.direction, &seen);
-                if le != Rgb::ZERO {
+                let le: C = emission.seen(ng, -arrival.direction, &seen, lambda);
+                if le != C::ZERO {
                     let weight = self.light_sampling.emitter_weight(self.lit(), &arrival, ng, &bounce);
                     radiance += beta * le * weight as f32;
                 }
@@ -85,13 +117,13 @@ impl<'a> PathIntegrator<'a> {
                 return radiance;
             }
             depth += 1;
-            let bsdf = self.world.materials[object.material].bsdf(hit.uv, hit.p);
+            let bsdf = self.world.materials[object.material].resolve::<C>(hit.uv, hit.p, lambda);
             // Flat shapes shade with their geometric normal, already taken to the local frame.
             let ns = if hit.ns == hit.ng { ng } else { self.propagator.local_normal(arrival.region, hit.p, hit.ns) };
             let frame = Frame::from_normal(ns);
             let wo = frame.to_local(-arrival.direction);
             if !bsdf.is_delta() {
-                let shading = Shading { bsdf: &bsdf, frame: &frame, wo, ng, shift };
+                let shading = Shading { bsdf: &bsdf, frame: &frame, wo, ng, shift, lambda: *lambda };
                 radiance += beta * self.light_sampling.direct(self.lit(), &arrival, &shading, sampler, stats);
             }
             let Some(sample) = bsdf.sample(wo, sampler.next_f64(), sampler.next_2d()) else {
@@ -99,7 +131,7 @@ impl<'a> PathIntegrator<'a> {
                 return radiance;
             };
             beta *= sample.weight;
-            if beta == Rgb::ZERO || !beta.is_finite() {
+            if beta == C::ZERO || !beta.is_finite() {
                 stats.fates.absorbed += 1;
                 return radiance;
             }
@@ -114,7 +146,7 @@ impl<'a> PathIntegrator<'a> {
                     stats.fates.absorbed += 1;
                     return radiance;
                 }
-                beta /= rr_beta as f32;
+                beta = beta / rr_beta as f32;
             }
             direction = frame.to_world(sample.wi);
             bounce = Bounce { pdf: sample.pdf, specular: sample.is_delta, from: hit.p, direction };
@@ -131,14 +163,23 @@ impl<'a> PathIntegrator<'a> {
 
 /// Where a camera path's segment ended: at a surface to shade, or nowhere more, seeing the sky
 /// radiance `Sky` (already frequency-shifted; zero when captured or failed).
-pub(super) enum SegmentEnd {
+// Returned once per segment and matched at once: boxing the arrival would allocate in the path
+// loop for nothing.
+#[allow(clippy::large_enum_variant)]
+pub(super) enum SegmentEnd<C: Colour> {
     Surface(Arrival),
-    Sky(Rgb),
+    Sky(C),
 }
 
 /// Sorts a traced segment's end, counting the fate of a path that ends there; the sky is seen
-/// with the path's frequency ratio `shift` at the segment's start.
-pub(super) fn segment_end(world: &World, end: RayEnd, shift: Shift, stats: &mut PathStats) -> SegmentEnd {
+/// with the path's frequency ratio `shift` at the segment's start, in the colours `C` at `lambda`.
+pub(super) fn segment_end<C: Colour>(
+    world: &World,
+    end: RayEnd,
+    shift: Shift,
+    lambda: &C::Lambda,
+    stats: &mut PathStats,
+) -> SegmentEnd<C> {
     match end {
         RayEnd::Hit(arrival) => SegmentEnd::Surface(arrival),
         RayEnd::Escaped { region, direction, traversed, energy } => {
@@ -147,15 +188,19 @@ pub(super) fn segment_end(world: &World, end: RayEnd, shift: Shift, stats: &mut 
             } else {
                 stats.fates.escaped += 1;
             }
-            SegmentEnd::Sky(shift.after(energy).brightness_factor() * world.sky(region).radiance(direction))
+            SegmentEnd::Sky(C::illuminant(
+                world.sky(region).radiance(direction),
+                shift.after(energy).shown(1.0),
+                lambda,
+            ))
         }
         RayEnd::Captured => {
             stats.fates.captured += 1;
-            SegmentEnd::Sky(Rgb::ZERO)
+            SegmentEnd::Sky(C::ZERO)
         }
         RayEnd::Failed => {
             stats.fates.failed += 1;
-            SegmentEnd::Sky(Rgb::ZERO)
+            SegmentEnd::Sky(C::ZERO)
         }
     }
 }

@@ -41,12 +41,12 @@ use super::fresnel::ConductorFresnel;
 use super::microfacet::{reflect, Ggx};
 use super::mirror::reflect_z;
 use super::BsdfSample;
-use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::spectrum::Colour;
 
-pub(super) fn f(ggx: Ggx, fresnel: &ConductorFresnel, wo: Vec3, wi: Vec3) -> Rgb {
+pub(super) fn f<C: Colour>(ggx: Ggx, fresnel: &ConductorFresnel<C>, wo: Vec3, wi: Vec3) -> C {
     if ggx.is_smooth() || wo.z <= 0.0 || wi.z <= 0.0 {
-        return Rgb::ZERO;
+        return C::ZERO;
     }
     let h = (wo + wi).normalize();
     let scalar = ggx.d(h) * ggx.g(wo, wi) / (4.0 * wo.z * wi.z);
@@ -60,7 +60,12 @@ pub(super) fn pdf(ggx: Ggx, wo: Vec3, wi: Vec3) -> f64 {
     ggx.reflection_pdf(wo, wi)
 }
 
-pub(super) fn sample(ggx: Ggx, fresnel: &ConductorFresnel, wo: Vec3, u: [f64; 2]) -> Option<BsdfSample> {
+pub(super) fn sample<C: Colour>(
+    ggx: Ggx,
+    fresnel: &ConductorFresnel<C>,
+    wo: Vec3,
+    u: [f64; 2],
+) -> Option<BsdfSample<C>> {
     if wo.z <= 0.0 {
         return None;
     }

@@ -40,8 +40,8 @@
 use super::fresnel;
 use super::mirror::reflect_z;
 use super::BsdfSample;
-use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::spectrum::Colour;
 
 /// Refraction of `w` (pointing away from the interface, either side) through the interface with normal
 /// `+z` and relative index `eta` (inside over outside): the transmitted direction (pointing away on the
@@ -59,14 +59,14 @@ pub fn refract(w: Vec3, eta: f64) -> Option<(Vec3, f64)> {
     Some((wt, eta))
 }
 
-pub(super) fn sample(eta: f64, transmittance: Rgb, wo: Vec3, uc: f64) -> Option<BsdfSample> {
+pub(super) fn sample<C: Colour>(eta: f64, transmittance: C, wo: Vec3, uc: f64) -> Option<BsdfSample<C>> {
     if wo.z == 0.0 {
         return None;
     }
     let r = fresnel::dielectric(wo.z, eta);
     if uc < r {
         // Reflection with probability F: weight F / F = 1.
-        return Some(BsdfSample::delta(reflect_z(wo), Rgb::ONE, r, 1.0));
+        return Some(BsdfSample::delta(reflect_z(wo), C::ONE, r, 1.0));
     }
     match refract(wo, eta) {
         // Refraction with probability 1 − F: weight (1 − F) / (1 − F) · T / η_rel².
@@ -75,13 +75,14 @@ pub(super) fn sample(eta: f64, transmittance: Rgb, wo: Vec3, uc: f64) -> Option<
             Some(BsdfSample::delta(wi, weight, 1.0 - r, eta_rel))
         }
         // Only reachable through rounding at the critical angle, where F = 1 to within it.
-        None => Some(BsdfSample::delta(reflect_z(wo), Rgb::ONE, 1.0, 1.0)),
+        None => Some(BsdfSample::delta(reflect_z(wo), C::ONE, 1.0, 1.0)),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::color::Rgb;
 
     #[test]
     fn snell_law_and_round_trip() {

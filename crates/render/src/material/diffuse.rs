@@ -18,14 +18,14 @@
 //! Two-sided (see [`super`]); all functions here take `wo` in the upper hemisphere.
 
 use super::BsdfSample;
-use crate::color::Rgb;
 use crate::geometry::Vec3;
 use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
+use crate::spectrum::Colour;
 use std::f64::consts::FRAC_1_PI;
 
-pub(super) fn f(reflectance: Rgb, wi: Vec3) -> Rgb {
+pub(super) fn f<C: Colour>(reflectance: C, wi: Vec3) -> C {
     if wi.z <= 0.0 {
-        return Rgb::ZERO;
+        return C::ZERO;
     }
     reflectance * FRAC_1_PI as f32
 }
@@ -34,7 +34,7 @@ pub(super) fn pdf(wi: Vec3) -> f64 {
     cosine_hemisphere_pdf(wi.z)
 }
 
-pub(super) fn sample(reflectance: Rgb, u: [f64; 2]) -> Option<BsdfSample> {
+pub(super) fn sample<C: Colour>(reflectance: C, u: [f64; 2]) -> Option<BsdfSample<C>> {
     let wi = cosine_hemisphere(u);
     let pdf = cosine_hemisphere_pdf(wi.z);
     // f·cos θ / pdf = (ρ/π)·cos θ / (cos θ/π) = ρ.

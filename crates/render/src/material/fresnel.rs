@@ -11,6 +11,7 @@
 //! relative index `n_inside / n_outside`, "outside" being the side the normal points to.
 
 use crate::color::Rgb;
+use crate::spectrum::Colour;
 
 /// Unpolarised Fresnel reflectance of a smooth dielectric interface (Born & Wolf, *Principles of Optics*,
 /// §1.5; pbrt-v4 `FrDielectric`).
@@ -67,15 +68,16 @@ pub fn internal_diffuse_reflectance(eta: f64) -> f64 {
     1.0 - (1.0 - diffuse_reflectance(eta)) / (eta * eta)
 }
 
-/// Fresnel reflectance of a metal.
+/// Fresnel reflectance of a metal: as a scene gives it (RGB), or lifted to the colours a path
+/// carries ([`ConductorFresnel::lift`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ConductorFresnel {
+pub enum ConductorFresnel<C: Colour = Rgb> {
     /// Exact unpolarised Fresnel reflectance of a conductor with complex index of refraction `eta + i·k`
-    /// per RGB channel, relative to the outside medium (pbrt-v4 `FrComplex`).
-    Complex { eta: Rgb, k: Rgb },
+    /// per RGB channel (or wavelength), relative to the outside medium (pbrt-v4 `FrComplex`).
+    Complex { eta: C, k: C },
     /// Schlick's approximation `F0 + (1 − F0)(1 − cos θ)⁵` (Schlick 1994, *Computer Graphics Forum*
     /// 13(3)), with `f0` the colour at normal incidence. Convenient for artist-picked metal colours.
-    Schlick { f0: Rgb },
+    Schlick { f0: C },
 }
 
 /// Named conductors: `(names, η, κ)` at 650, 550 and 450 nm (R, G, B), from refractiveindex.info's tables
@@ -88,7 +90,7 @@ const METALS: [(&[&str], [f32; 3], [f32; 3]); 4] = [
     (&["aluminium", "aluminum", "al"], [1.3456, 0.96521, 0.61722], [7.4746, 6.3995, 5.3031]),
 ];
 
-impl ConductorFresnel {
+impl ConductorFresnel<Rgb> {
     /// The names [`ConductorFresnel::preset`] accepts (first spelling of each metal).
     pub const PRESETS: [&'static str; 4] = ["gold", "silver", "copper", "aluminium"];
 
@@ -102,20 +104,14 @@ impl ConductorFresnel {
             .map(|&(_, eta, k)| ConductorFresnel::Complex { eta: Rgb::from_array(eta), k: Rgb::from_array(k) })
     }
 
-    /// Reflectance for an angle of incidence with cosine `cos_theta_i` (clamped to `[0, 1]`).
-    pub fn eval(&self, cos_theta_i: f64) -> Rgb {
-        let cos_i = cos_theta_i.clamp(0.0, 1.0);
+    /// The reflectance in the colours `C` carries at `lambda`: η and κ as unbounded spectra,
+    /// `f0` as a reflectance.
+    pub fn lift<C: Colour>(&self, lambda: &C::Lambda) -> ConductorFresnel<C> {
         match *self {
-            ConductorFresnel::Complex { eta, k } => Rgb::new(
-                complex_channel(cos_i, eta.x.into(), k.x.into()) as f32,
-                complex_channel(cos_i, eta.y.into(), k.y.into()) as f32,
-                complex_channel(cos_i, eta.z.into(), k.z.into()) as f32,
-            ),
-            ConductorFresnel::Schlick { f0 } => {
-                let m = 1.0 - cos_i;
-                let m5 = (m * m) * (m * m) * m;
-                f0 + (Rgb::ONE - f0) * m5 as f32
+            ConductorFresnel::Complex { eta, k } => {
+                ConductorFresnel::Complex { eta: C::unbounded(eta, lambda), k: C::unbounded(k, lambda) }
             }
+            ConductorFresnel::Schlick { f0 } => ConductorFresnel::Schlick { f0: C::reflectance(f0, lambda) },
         }
     }
 
@@ -144,6 +140,23 @@ impl ConductorFresnel {
                 } else {
                     Err(format!("conductor f0 {f0} must lie in [0, 1]"))
                 }
+            }
+        }
+    }
+}
+
+impl<C: Colour> ConductorFresnel<C> {
+    /// Reflectance for an angle of incidence with cosine `cos_theta_i` (clamped to `[0, 1]`).
+    pub fn eval(&self, cos_theta_i: f64) -> C {
+        let cos_i = cos_theta_i.clamp(0.0, 1.0);
+        match *self {
+            ConductorFresnel::Complex { eta, k } => {
+                eta.zip(k, |eta, k| complex_channel(cos_i, eta.into(), k.into()) as f32)
+            }
+            ConductorFresnel::Schlick { f0 } => {
+                let m = 1.0 - cos_i;
+                let m5 = (m * m) * (m * m) * m;
+                f0 + (C::ONE - f0) * m5 as f32
             }
         }
     }

@@ -20,8 +20,8 @@
 //! Two-sided: the reflection formula holds on either side.
 
 use super::BsdfSample;
-use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::spectrum::Colour;
 
 /// Mirror reflection about the shading normal `+z`.
 #[inline]
@@ -29,6 +29,6 @@ pub(super) fn reflect_z(w: Vec3) -> Vec3 {
     Vec3::new(-w.x, -w.y, w.z)
 }
 
-pub(super) fn sample(reflectance: Rgb, wo: Vec3) -> Option<BsdfSample> {
+pub(super) fn sample<C: Colour>(reflectance: C, wo: Vec3) -> Option<BsdfSample<C>> {
     (wo.z != 0.0).then_some(BsdfSample::delta(reflect_z(wo), reflectance, 1.0, 1.0))
 }

@@ -39,6 +39,7 @@
 pub mod conductor;
 pub mod dielectric;
 pub mod diffuse;
+pub mod dispersion;
 pub mod fresnel;
 pub mod microfacet;
 pub mod mirror;
@@ -50,6 +51,7 @@ mod chi2;
 #[cfg(test)]
 mod tests;
 
+pub use dispersion::Dispersion;
 pub use fresnel::ConductorFresnel;
 pub use microfacet::roughness_to_alpha;
 pub use normal_map::NormalMap;
@@ -57,17 +59,18 @@ pub use normal_map::NormalMap;
 use crate::color::Rgb;
 use crate::geometry::Vec3;
 use crate::shape::SurfaceHit;
+use crate::spectrum::Colour;
 use crate::texture::Texture;
 use microfacet::Ggx;
 use plastic::Plastic;
 
 /// One sampled scattering direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BsdfSample {
+pub struct BsdfSample<C: Colour = Rgb> {
     /// The sampled direction toward the light, unit, in the local frame.
     pub wi: Vec3,
     /// `f·|cos θi| / pdf`: what the path throughput is multiplied by.
-    pub weight: Rgb,
+    pub weight: C,
     /// Solid-angle density of `wi`; for a delta lobe, the discrete probability of having chosen it.
     pub pdf: f64,
     /// True when `wi` came from a delta lobe (mirror reflection, smooth refraction).
@@ -77,32 +80,33 @@ pub struct BsdfSample {
     pub eta: f64,
 }
 
-impl BsdfSample {
+impl<C: Colour> BsdfSample<C> {
     /// A sample from a lobe with a density (reflection, no index crossed).
-    pub fn continuous(wi: Vec3, weight: Rgb, pdf: f64) -> Self {
+    pub fn continuous(wi: Vec3, weight: C, pdf: f64) -> Self {
         Self { wi, weight, pdf, is_delta: false, eta: 1.0 }
     }
 
     /// A sample from a delta lobe chosen with probability `pdf`.
-    pub fn delta(wi: Vec3, weight: Rgb, pdf: f64, eta: f64) -> Self {
+    pub fn delta(wi: Vec3, weight: C, pdf: f64, eta: f64) -> Self {
         Self { wi, weight, pdf, is_delta: true, eta }
     }
 }
 
-/// A BSDF with its parameters resolved at one surface point. See the module documentation for the
-/// conventions, and each variant's file for its model and scene-file parameters.
+/// A BSDF with its parameters resolved at one surface point, in the colours `C` a path carries.
+/// See the module documentation for the conventions, and each variant's file for its model and
+/// scene-file parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Bsdf {
+pub enum Bsdf<C: Colour = Rgb> {
     /// Lambertian reflection, `f = reflectance/π`.
-    Diffuse { reflectance: Rgb },
+    Diffuse { reflectance: C },
     /// Perfect specular reflection with a constant reflectance.
-    Mirror { reflectance: Rgb },
+    Mirror { reflectance: C },
     /// Smooth dielectric interface; `eta` = index inside / index outside; `transmittance` tints refraction.
-    Dielectric { eta: f64, transmittance: Rgb },
+    Dielectric { eta: f64, transmittance: C },
     /// GGX metal; `alpha` = GGX width (`roughness²`); below [`microfacet::SMOOTH_ALPHA`] a delta reflector.
-    RoughConductor { alpha: f64, fresnel: ConductorFresnel },
+    RoughConductor { alpha: f64, fresnel: ConductorFresnel<C> },
     /// Diffuse base `diffuse` under a GGX dielectric coating of width `alpha` and relative index `eta`.
-    RoughPlastic { diffuse: Rgb, alpha: f64, eta: f64 },
+    RoughPlastic { diffuse: C, alpha: f64, eta: f64 },
 }
 
 /// Mirror a direction through the surface plane.
@@ -123,7 +127,7 @@ fn upper(wo: Vec3, wi: Vec3) -> (Vec3, Vec3) {
 
 /// Two-sided opaque BSDFs sample as seen from the upper side and mirror the result back.
 #[inline]
-fn two_sided(wo: Vec3, sample_upper: impl FnOnce(Vec3) -> Option<BsdfSample>) -> Option<BsdfSample> {
+fn two_sided<C: Colour>(wo: Vec3, sample_upper: impl FnOnce(Vec3) -> Option<BsdfSample<C>>) -> Option<BsdfSample<C>> {
     if wo.z < 0.0 {
         sample_upper(flip(wo)).map(|s| BsdfSample { wi: flip(s.wi), ..s })
     } else {
@@ -131,14 +135,14 @@ fn two_sided(wo: Vec3, sample_upper: impl FnOnce(Vec3) -> Option<BsdfSample>) ->
     }
 }
 
-impl Bsdf {
+impl<C: Colour> Bsdf<C> {
     /// The BSDF value for light arriving from `wi` and leaving toward `wo`, without the cosine factor.
     /// Zero for delta lobes.
-    pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+    pub fn f(&self, wo: Vec3, wi: Vec3) -> C {
         let (wo, wi) = upper(wo, wi);
         match *self {
             Bsdf::Diffuse { reflectance } => diffuse::f(reflectance, wi),
-            Bsdf::Mirror { .. } | Bsdf::Dielectric { .. } => Rgb::ZERO,
+            Bsdf::Mirror { .. } | Bsdf::Dielectric { .. } => C::ZERO,
             Bsdf::RoughConductor { alpha, fresnel } => conductor::f(Ggx::new(alpha), &fresnel, wo, wi),
             Bsdf::RoughPlastic { diffuse, alpha, eta } => plastic(diffuse, alpha, eta).f(wo, wi),
         }
@@ -158,7 +162,7 @@ impl Bsdf {
     /// Samples a direction `wi` toward the light given `wo`, from the lobe-selection number `uc ∈ [0, 1)`
     /// and the direction numbers `u ∈ [0, 1)²`. `None` when the sample carries no energy (e.g. a
     /// microfacet reflection that points below the surface, or `wo` exactly in the surface plane).
-    pub fn sample(&self, wo: Vec3, uc: f64, u: [f64; 2]) -> Option<BsdfSample> {
+    pub fn sample(&self, wo: Vec3, uc: f64, u: [f64; 2]) -> Option<BsdfSample<C>> {
         match *self {
             Bsdf::Dielectric { eta, transmittance } => dielectric::sample(eta, transmittance, wo, uc),
             Bsdf::Diffuse { reflectance } => two_sided(wo, |_| diffuse::sample(reflectance, u)),
@@ -187,7 +191,7 @@ impl Bsdf {
     }
 }
 
-fn plastic(diffuse: Rgb, alpha: f64, eta: f64) -> Plastic {
+fn plastic<C: Colour>(diffuse: C, alpha: f64, eta: f64) -> Plastic<C> {
     Plastic { diffuse, ggx: Ggx::new(alpha), eta }
 }
 
@@ -199,8 +203,9 @@ pub enum Material {
     Diffuse { reflectance: Texture },
     /// See [`mirror`].
     Mirror { reflectance: Texture },
-    /// See [`dielectric`]. `ior` is the index inside relative to outside.
-    Dielectric { ior: f64, transmittance: Texture },
+    /// See [`dielectric`]. `ior` is the index inside relative to outside (at the d line when
+    /// the glass disperses light: see [`dispersion`]).
+    Dielectric { ior: f64, dispersion: Option<Dispersion>, transmittance: Texture },
     /// See [`conductor`]. `roughness ∈ [0, 1]`, `alpha = roughness²`.
     RoughConductor { roughness: f64, fresnel: ConductorFresnel },
     /// See [`plastic`]. `roughness ∈ [0, 1]`, `alpha = roughness²`; `ior ≥ 1` of the coating.
@@ -210,24 +215,40 @@ pub enum Material {
 }
 
 impl Material {
-    /// The BSDF at a surface point with texture coordinates `uv` and position `p` (in the region's world
-    /// coordinates, for solid textures). Colours are clamped to `[0, 1]` so that no texture can make a
-    /// surface create energy.
+    /// The RGB BSDF at a surface point with texture coordinates `uv` and position `p`: see
+    /// [`Material::resolve`].
     pub fn bsdf(&self, uv: [f64; 2], p: Vec3) -> Bsdf {
-        let albedo = |t: &Texture| t.eval(uv, p).clamp(Rgb::ZERO, Rgb::ONE);
+        self.resolve::<Rgb>(uv, p, &mut ())
+    }
+
+    /// The BSDF at a surface point with texture coordinates `uv` and position `p` (in the region's
+    /// world coordinates, for solid textures), in the colours `C` a path carries at `lambda`.
+    /// Colours are clamped to `[0, 1]` so that no texture can make a surface create energy. A
+    /// dispersing glass refracts at the hero wavelength, which alone is carried on from here.
+    pub fn resolve<C: Colour>(&self, uv: [f64; 2], p: Vec3, lambda: &mut C::Lambda) -> Bsdf<C> {
+        let albedo = |t: &Texture, lambda: &C::Lambda| C::reflectance(t.eval(uv, p).clamp(Rgb::ZERO, Rgb::ONE), lambda);
         match self {
-            Material::Diffuse { reflectance } => Bsdf::Diffuse { reflectance: albedo(reflectance) },
-            Material::Mirror { reflectance } => Bsdf::Mirror { reflectance: albedo(reflectance) },
-            Material::Dielectric { ior, transmittance } => {
-                Bsdf::Dielectric { eta: *ior, transmittance: albedo(transmittance) }
+            Material::Diffuse { reflectance } => Bsdf::Diffuse { reflectance: albedo(reflectance, lambda) },
+            Material::Mirror { reflectance } => Bsdf::Mirror { reflectance: albedo(reflectance, lambda) },
+            Material::Dielectric { ior, dispersion, transmittance } => {
+                let eta = match (dispersion, C::hero(lambda)) {
+                    (Some(dispersion), Some(hero)) => {
+                        C::keep_hero(lambda);
+                        dispersion.ior(hero)
+                    }
+                    _ => *ior,
+                };
+                Bsdf::Dielectric { eta, transmittance: albedo(transmittance, lambda) }
             }
             Material::RoughConductor { roughness, fresnel } => {
-                Bsdf::RoughConductor { alpha: roughness_to_alpha(*roughness), fresnel: *fresnel }
+                Bsdf::RoughConductor { alpha: roughness_to_alpha(*roughness), fresnel: fresnel.lift::<C>(lambda) }
             }
-            Material::RoughPlastic { diffuse, roughness, ior } => {
-                Bsdf::RoughPlastic { diffuse: albedo(diffuse), alpha: roughness_to_alpha(*roughness), eta: *ior }
-            }
-            Material::NormalMapped { base, .. } => base.bsdf(uv, p),
+            Material::RoughPlastic { diffuse, roughness, ior } => Bsdf::RoughPlastic {
+                diffuse: albedo(diffuse, lambda),
+                alpha: roughness_to_alpha(*roughness),
+                eta: *ior,
+            },
+            Material::NormalMapped { base, .. } => base.resolve(uv, p, lambda),
         }
     }
 
@@ -255,7 +276,7 @@ impl Material {
         };
         match self {
             Material::Diffuse { reflectance } | Material::Mirror { reflectance } => reflectance.validate(),
-            Material::Dielectric { ior, transmittance } => {
+            Material::Dielectric { ior, transmittance, .. } => {
                 transmittance.validate()?;
                 if ior.is_finite() && *ior > 0.0 {
                     Ok(())

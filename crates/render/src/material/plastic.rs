@@ -53,24 +53,24 @@ use super::fresnel;
 use super::microfacet::{reflect, Ggx};
 use super::mirror::reflect_z;
 use super::BsdfSample;
-use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
 use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
+use crate::spectrum::Colour;
 use std::f64::consts::FRAC_1_PI;
 
 /// The resolved parameters: base albedo, coating distribution and coating index.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Plastic {
-    pub diffuse: Rgb,
+pub(super) struct Plastic<C: Colour> {
+    pub diffuse: C,
     pub ggx: Ggx,
     pub eta: f64,
 }
 
-impl Plastic {
+impl<C: Colour> Plastic<C> {
     /// Probability of sampling the coating lobe for this `wo`.
     fn coating_probability(&self, cos_o: f64) -> f64 {
         let fo = fresnel::dielectric(cos_o, self.eta);
-        let base = (1.0 - fo) * f64::from(luminance(self.diffuse).max(0.0));
+        let base = (1.0 - fo) * f64::from(self.diffuse.weight().max(0.0));
         if fo + base > 0.0 {
             fo / (fo + base)
         } else {
@@ -88,19 +88,19 @@ impl Plastic {
     }
 
     /// The diffuse base seen through the coating.
-    fn f_base(&self, wo: Vec3, wi: Vec3) -> Rgb {
+    fn f_base(&self, wo: Vec3, wi: Vec3) -> C {
         let t_in = 1.0 - fresnel::dielectric(wi.z, self.eta);
         let t_out = 1.0 - fresnel::dielectric(wo.z, self.eta);
         let fdr = fresnel::internal_diffuse_reflectance(self.eta) as f32;
         let scale = (t_in * t_out * FRAC_1_PI / (self.eta * self.eta)) as f32;
-        self.diffuse / (Rgb::ONE - self.diffuse * fdr) * scale
+        self.diffuse / (C::ONE - self.diffuse * fdr) * scale
     }
 
-    pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+    pub fn f(&self, wo: Vec3, wi: Vec3) -> C {
         if wo.z <= 0.0 || wi.z <= 0.0 {
-            return Rgb::ZERO;
+            return C::ZERO;
         }
-        self.f_base(wo, wi) + Rgb::splat(self.f_coating(wo, wi) as f32)
+        self.f_base(wo, wi) + C::splat(self.f_coating(wo, wi) as f32)
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
@@ -112,7 +112,7 @@ impl Plastic {
         p * coating + (1.0 - p) * cosine_hemisphere_pdf(wi.z)
     }
 
-    pub fn sample(&self, wo: Vec3, uc: f64, u: [f64; 2]) -> Option<BsdfSample> {
+    pub fn sample(&self, wo: Vec3, uc: f64, u: [f64; 2]) -> Option<BsdfSample<C>> {
         if wo.z <= 0.0 {
             return None;
         }
@@ -120,7 +120,7 @@ impl Plastic {
         let wi = if uc < p {
             if self.ggx.is_smooth() {
                 let fo = fresnel::dielectric(wo.z, self.eta);
-                return Some(BsdfSample::delta(reflect_z(wo), Rgb::splat((fo / p) as f32), p, 1.0));
+                return Some(BsdfSample::delta(reflect_z(wo), C::splat((fo / p) as f32), p, 1.0));
             }
             reflect(wo, self.ggx.sample_visible_normal(wo, u))
         } else {

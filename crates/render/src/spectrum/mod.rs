@@ -12,6 +12,7 @@ mod blackbody;
 mod blackbody_colour;
 mod cie;
 mod cie_data;
+mod colour;
 mod d65;
 mod fit;
 mod rgb_spectrum;
@@ -25,8 +26,9 @@ mod xyz;
 pub use blackbody::{Blackbody, NormalizedBlackbody, WIEN_DISPLACEMENT};
 pub use blackbody_colour::BlackbodyColours;
 pub use cie::{cmf, xyz_quadrature};
+pub use colour::Colour;
 pub use d65::D65;
-pub use rgb_spectrum::{RgbIlluminantSpectrum, RgbUpsampler};
+pub use rgb_spectrum::{RgbIlluminantSpectrum, RgbUnboundedSpectrum, RgbUpsampler};
 pub use rgb_table::RgbToSpectrumTable;
 pub use sampled::SampledSpectrum;
 pub use shift::{FrequencyShift, Shifted};
@@ -56,13 +58,11 @@ pub trait Spectrum {
 
 #[cfg(test)]
 pub(crate) mod test_support {
-    use super::RgbToSpectrumTable;
-    use std::sync::OnceLock;
+    use super::{RgbToSpectrumTable, RgbUpsampler};
 
-    /// One optimised table shared by this crate's tests (optimising it takes about a second).
+    /// The optimised table, shared with rendering (optimising it takes about a second).
     pub fn table() -> &'static RgbToSpectrumTable {
-        static TABLE: OnceLock<RgbToSpectrumTable> = OnceLock::new();
-        TABLE.get_or_init(|| RgbToSpectrumTable::optimise(RgbToSpectrumTable::DEFAULT_RESOLUTION))
+        RgbUpsampler::get().table()
     }
 
     /// The wavelength in nm maximising `f` on [lo, hi] by golden-section search (unimodal `f`).

@@ -2,6 +2,7 @@
 //! spectrum times D65 (pbrt-v4's `RGBAlbedoSpectrum` and `RGBIlluminantSpectrum`).
 
 use super::{RgbToSpectrumTable, SigmoidPolynomial, Spectrum, D65};
+use std::sync::OnceLock;
 
 /// Lifts linear Rec. 709 colours to spectra with an optimised [`RgbToSpectrumTable`].
 pub struct RgbUpsampler {
@@ -15,16 +16,29 @@ impl RgbUpsampler {
         Self { table, d65: D65::new() }
     }
 
+    /// The upsampler spectral rendering uses, its table optimised at
+    /// [`RgbToSpectrumTable::DEFAULT_RESOLUTION`] on first use (under a second on two cores)
+    /// and kept: a deterministic function of nothing, like a constant table.
+    pub fn get() -> &'static RgbUpsampler {
+        static UPSAMPLER: OnceLock<RgbUpsampler> = OnceLock::new();
+        UPSAMPLER
+            .get_or_init(|| RgbUpsampler::new(RgbToSpectrumTable::optimise(RgbToSpectrumTable::DEFAULT_RESOLUTION)))
+    }
+
+    /// The table it lifts colours with.
+    pub fn table(&self) -> &RgbToSpectrumTable {
+        &self.table
+    }
+
     /// The reflectance of albedo `rgb` (components clamped to [0, 1]): a sigmoid polynomial, in
     /// [0, 1] at every wavelength, whose colour under D65 is `rgb`.
     pub fn albedo(&self, rgb: [f32; 3]) -> SigmoidPolynomial {
         self.table.lookup(rgb)
     }
 
-    /// The spectral radiance of emitter `rgb` (components ≥ 0, unbounded): with m the largest
-    /// component, 2m × (the reflectance of rgb / 2m) × D65, so that (1, 1, 1) is exactly D65 at
-    /// Y = 1 and a colour's chromaticity is kept at any brightness (pbrt-v4).
-    pub fn illuminant(&self, rgb: [f32; 3]) -> RgbIlluminantSpectrum {
+    /// A non-negative RGB quantity with no bound (components < 0 taken as 0): with m the
+    /// largest component, 2m × the reflectance of rgb / 2m (pbrt-v4's `RGBUnboundedSpectrum`).
+    pub fn unbounded(&self, rgb: [f32; 3]) -> RgbUnboundedSpectrum {
         let rgb = rgb.map(|v| if v >= 0.0 { v } else { 0.0 });
         let scale = 2.0 * rgb.iter().copied().fold(0.0, f32::max);
         let reflectance = if scale > 0.0 && scale.is_finite() {
@@ -32,24 +46,43 @@ impl RgbUpsampler {
         } else {
             SigmoidPolynomial::constant(0.0)
         };
-        RgbIlluminantSpectrum { scale: f64::from(scale), reflectance, d65: self.d65 }
+        RgbUnboundedSpectrum { scale: f64::from(scale), reflectance }
+    }
+
+    /// The spectral radiance of emitter `rgb` (components ≥ 0, unbounded): its
+    /// [`RgbUpsampler::unbounded`] spectrum times D65, so that (1, 1, 1) is exactly D65 at Y = 1
+    /// and a colour's chromaticity is kept at any brightness (pbrt-v4).
+    pub fn illuminant(&self, rgb: [f32; 3]) -> RgbIlluminantSpectrum {
+        RgbIlluminantSpectrum { unbounded: self.unbounded(rgb), d65: self.d65 }
     }
 }
 
-/// An RGB emitter's spectral radiance: scale × sigmoid polynomial × D65 (see [`RgbUpsampler::illuminant`]).
+/// An unbounded RGB quantity's spectrum: scale × sigmoid polynomial (see [`RgbUpsampler::unbounded`]).
 #[derive(Clone, Copy, Debug)]
-pub struct RgbIlluminantSpectrum {
+pub struct RgbUnboundedSpectrum {
     scale: f64,
     reflectance: SigmoidPolynomial,
+}
+
+impl Spectrum for RgbUnboundedSpectrum {
+    fn eval(&self, lambda: f64) -> f64 {
+        if self.scale == 0.0 {
+            return 0.0;
+        }
+        self.scale * self.reflectance.eval(lambda)
+    }
+}
+
+/// An RGB emitter's spectral radiance: its unbounded spectrum × D65 (see [`RgbUpsampler::illuminant`]).
+#[derive(Clone, Copy, Debug)]
+pub struct RgbIlluminantSpectrum {
+    unbounded: RgbUnboundedSpectrum,
     d65: D65,
 }
 
 impl Spectrum for RgbIlluminantSpectrum {
     fn eval(&self, lambda: f64) -> f64 {
-        if self.scale == 0.0 {
-            return 0.0;
-        }
-        self.scale * self.reflectance.eval(lambda) * self.d65.eval(lambda)
+        self.unbounded.eval(lambda) * self.d65.eval(lambda)
     }
 }
 
@@ -108,7 +141,7 @@ mod tests {
 
     #[test]
     fn white_emitter_integrates_to_white_and_keeps_its_colour_when_scaled() {
-        let up = RgbUpsampler::new(test_support::table().clone());
+        let up = RgbUpsampler::get();
         let white = xyz_to_linear_srgb(xyz_quadrature(&up.illuminant([1.0, 1.0, 1.0])));
         // The tabulated D65 integrates to (0.312727, 0.329023), 3e-5 from Rec. 709's nominal white.
         assert!((white - DVec3::ONE).abs().max_element() < 1e-3, "{white}");

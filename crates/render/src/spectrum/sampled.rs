@@ -1,7 +1,7 @@
 //! A spectrum's values at a path's sampled wavelengths, with elementwise arithmetic.
 
 use super::{cie, SampledWavelengths, Xyz, N_WAVELENGTHS};
-use std::ops::{Add, AddAssign, Div, Mul, MulAssign};
+use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Sub};
 
 /// N values of a spectrum, one per wavelength of a [`SampledWavelengths`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -10,6 +10,11 @@ pub struct SampledSpectrum([f32; N_WAVELENGTHS]);
 impl SampledSpectrum {
     /// The same value at every wavelength.
     pub fn splat(v: f32) -> Self {
+        Self::splat_const(v)
+    }
+
+    /// [`SampledSpectrum::splat`] for constants.
+    pub const fn splat_const(v: f32) -> Self {
         Self([v; N_WAVELENGTHS])
     }
 
@@ -70,6 +75,13 @@ impl AddAssign for SampledSpectrum {
     }
 }
 
+impl Sub for SampledSpectrum {
+    type Output = Self;
+    fn sub(self, rhs: Self) -> Self {
+        Self::from_fn(|i| self.0[i] - rhs.0[i])
+    }
+}
+
 impl Mul for SampledSpectrum {
     type Output = Self;
     fn mul(self, rhs: Self) -> Self {
@@ -87,6 +99,13 @@ impl Mul<f32> for SampledSpectrum {
     type Output = Self;
     fn mul(self, rhs: f32) -> Self {
         Self::from_fn(|i| self.0[i] * rhs)
+    }
+}
+
+impl Div for SampledSpectrum {
+    type Output = Self;
+    fn div(self, rhs: Self) -> Self {
+        Self::from_fn(|i| self.0[i] / rhs.0[i])
     }
 }
 

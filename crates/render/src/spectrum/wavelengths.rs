@@ -35,14 +35,17 @@ impl SampledWavelengths {
     /// uᵢ = u + i/N (mod 1) is mapped through the inverse CDF of p(λ) ∝ 1/cosh²(a(λ − 538 nm)),
     /// a = 0.0072/nm, on [360, 830] nm, a smooth bump over the luminous range. With
     /// t(λ) = tanh(a(λ − 538)), the CDF is (t(λ) − t(360)) / (t(830) − t(360)).
+    /// The density at t is a (1 − t²) / (t(830) − t(360)), as 1/cosh² = 1 − tanh².
     pub fn sample_visible(u: f32) -> Self {
-        let lambda: [f32; N_WAVELENGTHS] = std::array::from_fn(|i| {
-            let (t_lo, t_hi) = visible_tanh_bounds();
+        let (t_lo, t_hi) = visible_tanh_bounds();
+        let mut pdf = [0.0; N_WAVELENGTHS];
+        let lambda = std::array::from_fn(|i| {
             let t = t_lo + rotated(u, i) * (t_hi - t_lo);
+            pdf[i] = (VISIBLE_RATE * (1.0 - t * t) / (t_hi - t_lo)) as f32;
             let lambda = VISIBLE_CENTRE + t.atanh() / VISIBLE_RATE;
             lambda.clamp(LAMBDA_MIN, LAMBDA_MAX) as f32
         });
-        Self { lambda, pdf: lambda.map(|l| visible_pdf(f64::from(l)) as f32) }
+        Self { lambda, pdf }
     }
 
     /// Wavelength `i` in nm (0 is the hero).
@@ -53,6 +56,17 @@ impl SampledWavelengths {
     /// The density wavelength `i` was drawn with, in 1/nm.
     pub fn pdf(&self, i: usize) -> f32 {
         self.pdf[i]
+    }
+
+    /// Keeps only the hero wavelength: the companions' densities become 0 (they no longer
+    /// count) and the hero's is divided by their number, so that its estimate alone stays
+    /// unbiased (pbrt-v4's `TerminateSecondary`). Idempotent.
+    pub fn terminate_secondary(&mut self) {
+        if self.pdf[1..].iter().all(|&p| p == 0.0) {
+            return;
+        }
+        self.pdf[0] /= N_WAVELENGTHS as f32;
+        self.pdf[1..].fill(0.0);
     }
 }
 
@@ -67,16 +81,16 @@ fn visible_tanh_bounds() -> (f64, f64) {
     (t(LAMBDA_MIN), t(LAMBDA_MAX))
 }
 
-/// The visible-importance density at `lambda`: a / (cosh²(a(λ − 538)) (t(830) − t(360))).
-fn visible_pdf(lambda: f64) -> f64 {
-    let (t_lo, t_hi) = visible_tanh_bounds();
-    let c = (VISIBLE_RATE * (lambda - VISIBLE_CENTRE)).cosh();
-    VISIBLE_RATE / (c * c * (t_hi - t_lo))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The visible-importance density at `lambda`: a / (cosh²(a(λ − 538)) (t(830) − t(360))).
+    fn visible_pdf(lambda: f64) -> f64 {
+        let (t_lo, t_hi) = visible_tanh_bounds();
+        let c = (VISIBLE_RATE * (lambda - VISIBLE_CENTRE)).cosh();
+        VISIBLE_RATE / (c * c * (t_hi - t_lo))
+    }
 
     #[test]
     fn uniform_companions_are_stratified_over_the_range() {
@@ -102,7 +116,9 @@ mod tests {
         // The sampler inverts the CDF: the fraction of the range's probability below λ(u) is u.
         for k in 0..50 {
             let u = k as f32 / 50.0;
-            let l = f64::from(SampledWavelengths::sample_visible(u).lambda(0));
+            let w = SampledWavelengths::sample_visible(u);
+            let l = f64::from(w.lambda(0));
+            assert!((f64::from(w.pdf(0)) / visible_pdf(l) - 1.0).abs() < 1e-5, "pdf at {l} nm");
             let m = ((l - LAMBDA_MIN) / h) as usize;
             let cdf: f64 = (0..m).map(|i| visible_pdf(LAMBDA_MIN + (i as f64 + 0.5) * h) * h).sum();
             assert!((cdf - f64::from(u)).abs() < 1e-3, "u {u}: cdf {cdf}");

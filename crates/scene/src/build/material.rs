@@ -5,7 +5,7 @@ use crate::error::suggest;
 use crate::reader::{fmt_rgb, num, Node, Result, Table};
 use render::color::Rgb;
 use render::image_io::ImageData;
-use render::material::{ConductorFresnel, Material};
+use render::material::{ConductorFresnel, Dispersion, Material};
 use render::texture::earth::Earth;
 use render::texture::{GridAxis, GridHighlight, Texture};
 use std::sync::Arc;
@@ -13,7 +13,7 @@ use std::sync::Arc;
 const MATERIALS: &[(&str, &[&str])] = &[
     ("diffuse", &["reflectance"]),
     ("mirror", &["reflectance"]),
-    ("dielectric", &["ior", "transmittance"]),
+    ("dielectric", &["ior", "abbe", "transmittance"]),
     ("conductor", &["roughness", "metal", "eta", "k", "f0"]),
     ("plastic", &["diffuse", "roughness", "ior"]),
 ];
@@ -94,7 +94,14 @@ impl Builder<'_> {
                 if !(ior > 0.0) {
                     return Err(t.loc("ior").err(format!("must be > 0, got {}", num(ior))));
                 }
-                Material::Dielectric { ior, transmittance: self.texture_or(&t, "transmittance", 1.0)? }
+                let dispersion =
+                    match t.get("abbe") {
+                        Some(abbe) => Some(Dispersion::from_abbe(ior, abbe.f64()?).ok_or_else(|| {
+                            abbe.err("must be a positive Abbe number (BK7 glass: 64.17), with ior > 1")
+                        })?),
+                        None => None,
+                    };
+                Material::Dielectric { ior, dispersion, transmittance: self.texture_or(&t, "transmittance", 1.0)? }
             }
             "conductor" => Material::RoughConductor { roughness: roughness(&t)?, fresnel: conductor_fresnel(&t)? },
             _ => {

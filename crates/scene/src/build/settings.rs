@@ -28,6 +28,7 @@ pub(super) const RENDER_KEYS: &[&str] = &[
     "doppler",
     "beaming",
     "gravitational_shift",
+    "spectral",
 ];
 
 /// The largest image side accepted (as the command line's `--width`/`--height`).
@@ -116,7 +117,19 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
             None => Vec::new(),
         },
         shown: shown(t, integrator)?,
+        spectral: spectral(t, integrator)?,
     })
+}
+
+/// `spectral = true`: paths carry sampled wavelengths. Photon mapping carries RGB power.
+fn spectral(t: &Table<'_>, integrator: IntegratorKind) -> Result<bool> {
+    let spectral = t.or("spectral", false, |n| n.bool())?;
+    if spectral && integrator == IntegratorKind::Photon {
+        return Err(t
+            .loc("spectral")
+            .err("\"photon\" carries RGB power; spectral rendering needs \"path\" or \"brute-force\""));
+    }
+    Ok(spectral)
 }
 
 /// `doppler`, `beaming`, `gravitational_shift`: the teaching toggles, each on by default. Photon

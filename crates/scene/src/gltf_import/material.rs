@@ -82,7 +82,7 @@ fn surface(m: &gltf::Material<'_>, base_colour: Texture) -> Material {
     if transmission > 0.0 {
         let ior = m.ior().map_or(GLTF_IOR, f64::from);
         let ior = if ior.is_finite() && ior > 0.0 { ior } else { GLTF_IOR };
-        Material::Dielectric { ior, transmittance: base_colour }
+        Material::Dielectric { ior, dispersion: None, transmittance: base_colour }
     } else if pbr.metallic_factor() >= METAL_FROM {
         if roughness * roughness < SMOOTH_ALPHA {
             Material::Mirror { reflectance: base_colour }

@@ -19,10 +19,10 @@
 
 use super::point::{choice, sample_point, solid_angle_density, traced_arrival};
 use super::{contribution, Bounce, Lit, Shading};
-use crate::color::Rgb;
 use crate::integrator::stats::PathStats;
 use crate::propagator::Arrival;
 use crate::sampling::Sampler;
+use crate::spectrum::Colour;
 
 /// A BSDF-sampled ray is the aimed one when their start directions differ by less than this
 /// many chord tolerances ε per unit distance between the ends: the hit it found lies within ~ε
@@ -31,23 +31,23 @@ use crate::sampling::Sampler;
 const SAME_RAY: f64 = 16.0;
 
 /// One light point, joined by the ray aimed at it.
-pub(super) fn direct(
+pub(super) fn direct<C: Colour>(
     lit: Lit<'_>,
     at: &Arrival,
-    shading: &Shading<'_>,
+    shading: &Shading<'_, C>,
     sampler: &mut Sampler,
     stats: &mut PathStats,
-) -> Rgb {
+) -> C {
     let (u_choice, u_point) = (sampler.next_f64(), sampler.next_2d());
-    let Some(light) = sample_point(lit.world, at, u_choice, u_point) else { return Rgb::ZERO };
-    let Some(aimed) = lit.propagator.aim(at.region, at.hit.p, light.point) else { return Rgb::ZERO };
+    let Some(light) = sample_point(lit.world, at, u_choice, u_point) else { return C::ZERO };
+    let Some(aimed) = lit.propagator.aim(at.region, at.hit.p, light.point) else { return C::ZERO };
     let normal_local = lit.propagator.local_normal(at.region, light.point, light.normal);
     if !light.emission.faces(normal_local, -aimed.end) {
-        return Rgb::ZERO;
+        return C::ZERO;
     }
     let pdf = solid_angle_density(light.density(), light.normal, aimed.end_tangent, aimed.solid_angle_per_area);
     let visible = || traced_arrival(lit, at, shading.ng, aimed.start, (light.object, light.point), stats);
-    let emitted = |g| light.seen(normal_local, -aimed.end, g, lit);
+    let emitted = |g| light.seen(normal_local, -aimed.end, g, lit, &shading.lambda);
     contribution(shading, aimed.start, pdf, visible, emitted)
 }
 

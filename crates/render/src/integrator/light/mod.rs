@@ -20,11 +20,11 @@ mod straight;
 mod ways;
 
 use super::stats::PathStats;
-use crate::color::Rgb;
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::{Arrival, Propagator};
 use crate::sampling::{power_heuristic, Sampler};
+use crate::spectrum::Colour;
 use crate::world::World;
 
 /// How direct light is sampled at a vertex, besides BSDF sampling.
@@ -48,16 +48,18 @@ pub(super) struct Lit<'a> {
     pub propagator: &'a Propagator,
 }
 
-/// What direct lighting needs of a shading point.
+/// What direct lighting needs of a shading point, in the colours `C` its path carries.
 #[derive(Clone, Copy)]
-pub(super) struct Shading<'b> {
-    pub bsdf: &'b Bsdf,
+pub(super) struct Shading<'b, C: Colour> {
+    pub bsdf: &'b Bsdf<C>,
     pub frame: &'b Frame,
     pub wo: Vec3,
     /// Geometric normal in the local frame.
     pub ng: Vec3,
     /// The path's frequency ratio `ν_camera / ν_local` here.
     pub shift: crate::emission::Shift,
+    /// What the path's colours are sampled at.
+    pub lambda: C::Lambda,
 }
 
 /// Where the previous bounce left from, for the MIS weight of an emitter hit by BSDF sampling.
@@ -88,16 +90,16 @@ impl LightSampling {
     }
 
     /// One light sample at `at`, MIS-weighted against BSDF sampling.
-    pub(super) fn direct(
+    pub(super) fn direct<C: Colour>(
         self,
         lit: Lit<'_>,
         at: &Arrival,
-        shading: &Shading<'_>,
+        shading: &Shading<'_, C>,
         sampler: &mut Sampler,
         stats: &mut PathStats,
-    ) -> Rgb {
+    ) -> C {
         match self {
-            LightSampling::None => Rgb::ZERO,
+            LightSampling::None => C::ZERO,
             LightSampling::Straight => straight::direct(lit, at, shading, sampler, stats),
             LightSampling::Ways => ways::direct(lit, at, shading, sampler, stats),
             LightSampling::Aimed => aimed::direct(lit, at, shading, sampler, stats),
@@ -126,22 +128,22 @@ impl LightSampling {
 /// [`Arrival::energy`]); `emitted` gives the light's radiance seen with the path's frequency
 /// ratio at the light. The BSDF is evaluated first, so blocked-or-not is only asked where it
 /// reflects anything.
-pub(super) fn contribution(
-    shading: &Shading<'_>,
+pub(super) fn contribution<C: Colour>(
+    shading: &Shading<'_, C>,
     wi: Vec3,
     pdf: f64,
     visible: impl FnOnce() -> Option<f64>,
-    emitted: impl FnOnce(crate::emission::Shift) -> Rgb,
-) -> Rgb {
+    emitted: impl FnOnce(crate::emission::Shift) -> C,
+) -> C {
     let wi_local = shading.frame.to_local(wi);
     let f = shading.bsdf.f(shading.wo, wi_local) * wi_local.z.abs() as f32;
-    if f == Rgb::ZERO || !(pdf > 0.0 && pdf.is_finite()) {
-        return Rgb::ZERO;
+    if f == C::ZERO || !(pdf > 0.0 && pdf.is_finite()) {
+        return C::ZERO;
     }
-    let Some(energy) = visible() else { return Rgb::ZERO };
+    let Some(energy) = visible() else { return C::ZERO };
     let le = emitted(shading.shift.after(energy));
-    if le == Rgb::ZERO {
-        return Rgb::ZERO;
+    if le == C::ZERO {
+        return C::ZERO;
     }
     let weight = power_heuristic(pdf, shading.bsdf.pdf(shading.wo, wi_local));
     f * le * (weight / pdf) as f32

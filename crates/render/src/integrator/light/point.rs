@@ -1,12 +1,12 @@
 //! A point sampled on a light, and the solid-angle density a light ray to it has.
 
 use super::Lit;
-use crate::color::Rgb;
 use crate::emission::{Seen, Shift};
 use crate::geometry::Vec3;
 use crate::integrator::path::leave;
 use crate::integrator::stats::PathStats;
 use crate::propagator::{Arrival, RayEnd};
+use crate::spectrum::Colour;
 use crate::world::{Emission, World};
 
 /// A traced light ray counts as reaching its light point when it hits the light within this
@@ -35,10 +35,10 @@ impl LightPoint<'_> {
     }
 
     /// The radiance leaving the point in local direction `dir` (surface normal `normal` in
-    /// the local frame), seen with frequency ratio `shift`.
-    pub fn seen(&self, normal: Vec3, dir: Vec3, shift: Shift, lit: Lit<'_>) -> Rgb {
+    /// the local frame), seen with frequency ratio `shift`, in the colours `C` at `lambda`.
+    pub fn seen<C: Colour>(&self, normal: Vec3, dir: Vec3, shift: Shift, lit: Lit<'_>, lambda: &C::Lambda) -> C {
         let seen = Seen { region: self.region, point: self.point, shift, propagator: lit.propagator };
-        self.emission.seen(normal, dir, &seen)
+        self.emission.seen(normal, dir, &seen, lambda)
     }
 }
 

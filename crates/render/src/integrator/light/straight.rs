@@ -2,31 +2,31 @@
 
 use super::point::{choice, sample_point};
 use super::{contribution, Lit, Shading};
-use crate::color::Rgb;
 use crate::geometry::Ray;
 use crate::integrator::stats::PathStats;
 use crate::propagator::Arrival;
 use crate::sampling::Sampler;
 use crate::shape::offset_origin;
+use crate::spectrum::Colour;
 
 /// One light point, joined by a straight shadow ray.
-pub(super) fn direct(
+pub(super) fn direct<C: Colour>(
     lit: Lit<'_>,
     at: &Arrival,
-    shading: &Shading<'_>,
+    shading: &Shading<'_, C>,
     sampler: &mut Sampler,
     stats: &mut PathStats,
-) -> Rgb {
+) -> C {
     let (u_choice, u_point) = (sampler.next_f64(), sampler.next_2d());
-    let Some(light) = sample_point(lit.world, at, u_choice, u_point) else { return Rgb::ZERO };
+    let Some(light) = sample_point(lit.world, at, u_choice, u_point) else { return C::ZERO };
     let to_light = light.point - at.hit.p;
     let dist2 = to_light.length_squared();
     let wi = to_light / dist2.sqrt();
     if !light.emission.faces(light.normal, -wi) {
-        return Rgb::ZERO;
+        return C::ZERO;
     }
     let pdf = light.probability * dist2 / (light.normal.dot(wi).abs() * light.area);
-    let emitted = |g| light.seen(light.normal, -wi, g, lit);
+    let emitted = |g| light.seen(light.normal, -wi, g, lit, &shading.lambda);
     let visible = || {
         let origin = offset_origin(at.hit.p, at.hit.ng, wi);
         let to_point = light.point - origin;

@@ -36,11 +36,11 @@
 
 use super::point::{choice, sample_point, solid_angle_density, traced_arrival, LightPoint};
 use super::{contribution, Lit, Shading};
-use crate::color::Rgb;
 use crate::geometry::Vec3;
 use crate::integrator::stats::PathStats;
 use crate::propagator::{Arrival, Propagator};
 use crate::sampling::Sampler;
+use crate::spectrum::Colour;
 use spacetime::geodesic::connect::{short_way_arrives_behind, Connection, Way, Waypoints};
 use std::f64::consts::PI;
 
@@ -91,18 +91,18 @@ pub(super) struct Candidate<'w> {
 
 /// One light point joined by its geodesics, the short way round the hole and, at random, the
 /// long way.
-pub(super) fn direct(
+pub(super) fn direct<C: Colour>(
     lit: Lit<'_>,
     at: &Arrival,
-    shading: &Shading<'_>,
+    shading: &Shading<'_, C>,
     sampler: &mut Sampler,
     stats: &mut PathStats,
-) -> Rgb {
+) -> C {
     let (u_choice, u_point, u_way) = (sampler.next_f64(), sampler.next_2d(), sampler.next_f64());
     let Some(point) = sample_point(lit.world, at, u_choice, u_point) else {
-        return Rgb::ZERO;
+        return C::ZERO;
     };
-    let (mut sum, mut waypoints) = (Rgb::ZERO, Waypoints::default());
+    let (mut sum, mut waypoints) = (C::ZERO, Waypoints::default());
     for way in Way::BOTH {
         let probability = way_probability(way, at.hit.p, point.point);
         if u_way >= probability || (way == Way::Short && reflects_none(at, shading, &point)) {
@@ -110,7 +110,7 @@ pub(super) fn direct(
         }
         if let Some(light) = join(&point, lit.propagator, at, (way, probability), &mut waypoints) {
             let visible = || light.arrives(lit, at, shading.ng, stats);
-            let emitted = |g| light.light.seen(light.normal_local, light.leaving, g, lit);
+            let emitted = |g| light.light.seen(light.normal_local, light.leaving, g, lit, &shading.lambda);
             sum += contribution(shading, light.wi, light.pdf, visible, emitted);
         }
     }
@@ -122,7 +122,7 @@ pub(super) fn direct(
 /// plane, the short way leaves it into the back ([`short_way_arrives_behind`], reversed). Such
 /// points are not joined at all (the surface behind a one-sided light is the other case, dropped
 /// by the connection solver).
-fn reflects_none(at: &Arrival, shading: &Shading<'_>, point: &LightPoint) -> bool {
+fn reflects_none<C: Colour>(at: &Arrival, shading: &Shading<'_, C>, point: &LightPoint) -> bool {
     let front = if shading.wo.z >= 0.0 { at.hit.ns } else { -at.hit.ns };
     !shading.bsdf.has_transmission()
         && short_way_arrives_behind(front.to_array(), point.point.to_array(), at.hit.p.to_array())

@@ -103,7 +103,7 @@ pub(super) fn radiance(
         ng_local = arrival.ng_local;
         if let Some(emission) = object.emission.as_ref().filter(|_| !object.shape.area().is_finite()) {
             let rest = Seen { region: arrival.region, point: hit.p, shift: Shift::NONE, propagator };
-            radiance += beta * emission.seen(ng_local, -arrival.direction, &rest);
+            radiance += beta * emission.seen::<Rgb>(ng_local, -arrival.direction, &rest, &());
         }
         (region, p, ng, depth) = (arrival.region, hit.p, hit.ng, depth + 1);
         bsdf = world.materials[object.material].bsdf(hit.uv, hit.p);

@@ -157,8 +157,12 @@ pub(super) fn emit(
         region,
         origin: leave(point, normal, local_normal, aimed.direction),
         direction: aimed.direction,
-        power: emission.seen(local_normal, aimed.direction, &Seen { region, point, shift: Shift::NONE, propagator })
-            * scale as f32,
+        power: emission.seen::<Rgb>(
+            local_normal,
+            aimed.direction,
+            &Seen { region, point, shift: Shift::NONE, propagator },
+            &(),
+        ) * scale as f32,
     })
 }
 

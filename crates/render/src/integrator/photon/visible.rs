@@ -71,10 +71,11 @@ impl CameraPass<'_> {
         let mut depth = 0;
         loop {
             stats.rays += 1;
-            let arrival = match segment_end(
+            let arrival = match segment_end::<Rgb>(
                 self.world,
                 self.propagator.trace(self.world, region, origin, direction),
                 Shift::NONE,
+                &(),
                 stats,
             ) {
                 SegmentEnd::Surface(a) => a,
@@ -87,7 +88,7 @@ impl CameraPass<'_> {
             if let Some(emission) = &object.emission {
                 let rest =
                     Seen { region: arrival.region, point: hit.p, shift: Shift::NONE, propagator: self.propagator };
-                emitted += beta * emission.seen(ng, -arrival.direction, &rest);
+                emitted += beta * emission.seen::<Rgb>(ng, -arrival.direction, &rest, &());
             }
             // Camera paths end at a visible point or at the depth limit: either way at a surface.
             if depth == self.max_depth {
