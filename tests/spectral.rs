@@ -125,3 +125,53 @@ fn a_box_whose_colours_meet_only_white_renders_as_in_rgb() {
         );
     }
 }
+
+#[test]
+fn a_star_ahead_of_a_moving_camera_is_the_blackbody_at_the_doppler_shifted_temperature() {
+    // The brightest of a sparse star field, straight ahead of a camera moving towards it at v: it
+    // stays ahead (no aberration on the axis) and is seen as the blackbody at D·T, D⁴ brighter in
+    // total, in RGB exactly and in spectral rendering within noise.
+    let sky = "[sky]\ntype = \"stars\"\nseed = 3\ndensity = 2\nbrightness = 1\nstar_radius_deg = 1\n";
+    let at_rest = scene::parse(
+        &format!("[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = 40\n{sky}"),
+        "stars.toml",
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let render::sky::Sky::StarField(field) = at_rest.world.sky(spacetime::Region::Upper) else {
+        panic!("a star field")
+    };
+    let mut brightest: Option<render::sky::Star> = None;
+    field.for_each_star(|s| {
+        if brightest.is_none_or(|b| s.flux > b.flux) {
+            brightest = Some(*s);
+        }
+    });
+    let star = brightest.unwrap();
+    let v = 0.4f64;
+    let doppler = ((1.0 + v) / (1.0 - v)).sqrt();
+    let [x, y, z] = star.dir.to_array();
+    let velocity = star.dir * v;
+    let text = |spectral: bool| {
+        format!(
+            "[camera]\nposition = [0, 0, 0]\nlook_at = [{x}, {y}, {z}]\nfov = 0.05\nvelocity = {:?}\n\
+             [render]\nwidth = 4\nheight = 4\nspp = 64\nmax_depth = 0\nspectral = {spectral}\n{sky}",
+            velocity.to_array()
+        )
+    };
+    let expected: render::color::Rgb = star.seen((doppler, doppler), &());
+    let rgb = mean_and_error(&film_of(&text(false))).0;
+    for c in 0..3 {
+        assert!((rgb[c] / f64::from(expected[c]) - 1.0).abs() < 1e-3, "RGB: {rgb:?} against {expected}");
+    }
+    let rest: render::color::Rgb = star.seen((1.0, 1.0), &());
+    assert!(expected.z / expected.x > 1.3 * rest.z / rest.x, "bluer: {rest} → {expected}");
+    let (spectral, error) = mean_and_error(&film_of(&text(true)));
+    for c in 0..3 {
+        let want = f64::from(expected[c]);
+        assert!(
+            (spectral[c] - want).abs() < 4.0 * error[c] + 3e-3 * want,
+            "spectral: {spectral:?} ± {error:?} against {expected}"
+        );
+    }
+}

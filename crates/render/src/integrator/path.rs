@@ -188,11 +188,7 @@ pub(super) fn segment_end<C: Colour>(
             } else {
                 stats.fates.escaped += 1;
             }
-            SegmentEnd::Sky(C::illuminant(
-                world.sky(region).radiance(direction),
-                shift.after(energy).shown(1.0),
-                lambda,
-            ))
+            SegmentEnd::Sky(world.sky(region).seen(direction, shift.after(energy).shown(1.0), lambda))
         }
         RayEnd::Captured => {
             stats.fates.captured += 1;

@@ -38,6 +38,7 @@ pub use stars::{Star, StarDistribution, StarField, StarFieldParams};
 
 use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::spectrum::Colour;
 
 /// The radiance from infinity in each direction. See the module documentation.
 #[derive(Clone, Debug)]
@@ -58,6 +59,18 @@ impl Sky {
             Sky::Equirect(e) => e.radiance(dir),
             Sky::StarField(s) => s.radiance(dir),
             Sky::Grid(g) => g.radiance(dir),
+        }
+    }
+
+    /// [`Sky::radiance`] seen with its colour shifted by one ratio and its brightness by another
+    /// (`shown`, [`crate::emission::Shift::shown`]), in the colours `C` at `lambda`: a star field's
+    /// stars as blackbodies, every other sky as its RGB colour lifted ([`Colour::illuminant`]).
+    pub fn seen<C: Colour>(&self, dir: Vec3, shown: (f64, f64), lambda: &C::Lambda) -> C {
+        match self {
+            Sky::StarField(s) => s.seen(dir, shown, lambda),
+            Sky::Constant(_) | Sky::Gradient(_) | Sky::Equirect(_) | Sky::Grid(_) => {
+                C::illuminant(self.radiance(dir), shown, lambda)
+            }
         }
     }
 }

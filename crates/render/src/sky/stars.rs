@@ -21,8 +21,13 @@
 //!   `density × brightness`;
 //! - a star's angular radius grows slowly with its flux, `r = star_radius · (F/F_min)^(1/6)`, from
 //!   `star_radius` for the faintest to 4× that for the brightest;
-//! - colours are blackbody-ish: temperature log-uniform in 3000–12000 K, tinted by the ratio of Planck's
-//!   law at 610, 550 and 465 nm to a 6504 K (D65-like) white, normalised to unit luminance.
+//! - every star is a blackbody: its temperature is drawn from the spectral classes of the naked-eye
+//!   sky, roughly in the proportions of the Yale Bright Star Catalogue (stars to magnitude 6.5: a
+//!   fifth B and A each, under a third K, a few percent M; see [`CLASSES`]), log-uniform within
+//!   the class, and its radiance is Planck's law at that temperature scaled to the star's
+//!   luminance. Seen with a frequency shift `g` (a moving camera, a camera deep in a well) a star
+//!   is the blackbody at `gT`: the stars ahead of a fast camera turn blue, in RGB and in spectral
+//!   rendering alike.
 //!
 //! Cost: a lookup generates the stars of about one cell (`≈ 2` on average when `density` allows small
 //! enough cells; up to `density · 4π / (6 N²)` when the star size forces big cells).
@@ -45,9 +50,10 @@
 //! background = [0.002, 0.002, 0.004]
 //! ```
 
-use crate::color::{luminance, Rgb};
+use crate::color::Rgb;
 use crate::geometry::{Frame, Vec3};
 use crate::sampling::{uniform_cone, Rng};
+use crate::spectrum::{BlackbodyColours, Colour};
 use std::f64::consts::PI;
 
 /// Slope of the cumulative flux counts, `N(> F) ∝ F^(−γ)`: γ = 3/2 for sources uniform in Euclidean space.
@@ -61,9 +67,34 @@ const MAX_RADIUS_FACTOR: f64 = 4.0;
 const STARS_PER_CELL: f64 = 2.0;
 /// Refuse parameters that would put more stars than this in one cell (slow lookups).
 const MAX_STARS_PER_CELL: f64 = 500.0;
-/// Temperature range (K), log-uniform.
-const T_MIN: f64 = 3000.0;
-const T_MAX: f64 = 12000.0;
+/// The spectral classes of naked-eye stars: `(share of the stars, coolest and hottest
+/// temperature in kelvin)`, O to M. The shares are roughly those of the Yale Bright Star
+/// Catalogue (Hoffleit & Warren 1991, 9 110 stars to V = 6.5), where luminous hot stars and K
+/// giants, seen from far, outnumber the red dwarfs that dominate space; the temperature ranges are
+/// the classes' usual effective temperatures.
+const CLASSES: [(f64, f64, f64); 7] = [
+    (0.005, 30_000.0, 45_000.0),
+    (0.155, 10_000.0, 30_000.0),
+    (0.22, 7_500.0, 10_000.0),
+    (0.145, 6_000.0, 7_500.0),
+    (0.14, 5_200.0, 6_000.0),
+    (0.29, 3_700.0, 5_200.0),
+    (0.045, 2_400.0, 3_700.0),
+];
+
+/// The temperature of a star drawn with `u ∈ [0, 1)`: a class by its share, then log-uniform
+/// within it.
+fn temperature(u: f64) -> f64 {
+    let mut left = u;
+    for (share, coolest, hottest) in CLASSES {
+        if left < share {
+            return coolest * (hottest / coolest).powf(left / share);
+        }
+        left -= share;
+    }
+    // Rounding of the shares' sum: the coolest star.
+    CLASSES[CLASSES.len() - 1].1
+}
 
 /// The parameters of a star field as a scene gives them.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,7 +121,7 @@ impl Default for StarFieldParams {
 pub struct Star {
     /// Unit direction of the disc's centre.
     pub dir: Vec3,
-    /// Flux: radiance × solid angle of the disc (before the colour tint, which has unit luminance).
+    /// Flux: luminance × solid angle of the disc.
     pub flux: f64,
     /// Angular radius of the disc, radians.
     pub radius: f64,
@@ -105,9 +136,17 @@ impl Star {
         4.0 * PI * s * s
     }
 
-    /// The constant radiance over the disc.
+    /// The constant radiance over the disc, at rest.
     pub fn radiance(&self) -> Rgb {
-        blackbody_tint(self.temperature) * (self.flux / self.solid_angle()) as f32
+        self.seen((1.0, 1.0), &())
+    }
+
+    /// The radiance over the disc seen with its colour shifted by one ratio and its brightness
+    /// by another (`shown`, [`crate::emission::Shift::shown`]), in the colours `C` at `lambda`.
+    pub fn seen<C: Colour>(&self, shown: (f64, f64), lambda: &C::Lambda) -> C {
+        let luminance = self.flux / self.solid_angle();
+        let scale = luminance / BlackbodyColours::get().luminance(self.temperature);
+        C::blackbody(self.temperature, scale, shown, lambda)
     }
 
     /// True when `dir` lies on the disc.
@@ -129,7 +168,7 @@ pub struct StarDistribution {
 }
 
 impl StarDistribution {
-    /// The flux of all stars, `F_total` (before their colour tints, which have unit luminance).
+    /// The luminous flux of all stars, `F_total`.
     pub fn total_flux(&self) -> f64 {
         self.cdf.last().copied().unwrap_or(0.0)
     }
@@ -230,17 +269,6 @@ fn poisson(rng: &mut Rng, lambda: f64) -> u32 {
     k
 }
 
-/// A unit-luminance colour for a blackbody at `temperature` K relative to a 6504 K white (Planck's law
-/// sampled at three wavelengths standing for R, G, B; an approximation, not a colour-matching integral).
-fn blackbody_tint(temperature: f64) -> Rgb {
-    const C2: f64 = 1.4388e-2; // second radiation constant hc/k, m·K
-    const WAVELENGTHS: [f64; 3] = [610e-9, 550e-9, 465e-9];
-    let planck = |lambda: f64, t: f64| 1.0 / (lambda.powi(5) * ((C2 / (lambda * t)).exp() - 1.0));
-    let c = WAVELENGTHS.map(|l| (planck(l, temperature) / planck(l, 6504.0)) as f32);
-    let c = Rgb::from_array(c);
-    c / luminance(c)
-}
-
 impl StarField {
     /// Validates the parameters and picks the cube map's resolution.
     pub fn new(params: StarFieldParams) -> Result<Self, String> {
@@ -284,10 +312,17 @@ impl StarField {
         &self.params
     }
 
-    /// Radiance from `dir`: the background plus every star whose disc contains `dir`.
+    /// Radiance from `dir` at rest: the background plus every star whose disc contains `dir`.
     pub fn radiance(&self, dir: Vec3) -> Rgb {
-        let mut sum = self.params.background;
-        self.covering(dir, |star| sum += star.radiance());
+        self.seen(dir, (1.0, 1.0), &())
+    }
+
+    /// [`StarField::radiance`] seen with its colour shifted by one ratio and its brightness by
+    /// another (`shown`), in the colours `C` at `lambda`: the stars as blackbodies, the
+    /// background as its RGB colour.
+    pub fn seen<C: Colour>(&self, dir: Vec3, shown: (f64, f64), lambda: &C::Lambda) -> C {
+        let mut sum = C::illuminant(self.params.background, shown, lambda);
+        self.covering(dir, |star| sum += star.seen(shown, lambda));
         sum
     }
 
@@ -425,7 +460,7 @@ impl StarField {
             // Inverse CDF of the truncated Pareto law.
             let u = rng.next_f64();
             let flux_ratio = (1.0 - u * (1.0 - FLUX_RANGE.powf(-FLUX_SLOPE))).powf(-1.0 / FLUX_SLOPE);
-            let temperature = T_MIN * (T_MAX / T_MIN).powf(rng.next_f64());
+            let temperature = temperature(rng.next_f64());
             visit(&Star {
                 dir: face_point(c.face, x, y).normalize(),
                 flux: self.min_flux * flux_ratio,
@@ -439,6 +474,7 @@ impl StarField {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::color::luminance;
     use crate::sampling::uniform_sphere;
 
     fn field(density: f64, radius_deg: f64, seed: u64) -> StarField {
@@ -613,20 +649,45 @@ mod tests {
         let err = ((sum2 / f64::from(n) - mean * mean) / f64::from(n)).sqrt();
         let expected = f64::from(luminance(total_flux));
         assert!((mean - expected).abs() < 5.0 * err, "{mean} ± {err} vs {expected}");
-        // The tint has unit luminance, so the luminous flux is the sum of fluxes ≈ density·4π·brightness.
+        // A star's flux is its luminous flux, so the sky's is the sum of fluxes ≈ density·4π·brightness.
         let mut plain = 0.0;
         f.for_each_star(|s| plain += s.flux);
         assert!((expected - plain).abs() < 1e-4 * plain);
     }
 
     #[test]
-    fn tint_is_warm_to_cool_with_unit_luminance() {
-        let (cool, white, hot) = (blackbody_tint(3000.0), blackbody_tint(6504.0), blackbody_tint(12000.0));
-        for c in [cool, white, hot] {
-            assert!((luminance(c) - 1.0).abs() < 1e-5);
+    fn stars_are_blackbodies_of_the_naked_eye_classes() {
+        // Temperatures: each class's share within binomial noise, within its range.
+        let n = 200_000;
+        let mut rng = Rng::new(5);
+        let mut counts = [0usize; CLASSES.len()];
+        for _ in 0..n {
+            let t = temperature(rng.next_f64());
+            let k = CLASSES.iter().position(|&(_, lo, hi)| (lo..=hi).contains(&t)).unwrap();
+            counts[k] += 1;
         }
-        assert!(cool.x > cool.z && hot.z > hot.x, "red stars are cool, blue ones hot");
-        assert!((white - Rgb::ONE).abs().max_element() < 1e-5);
+        for ((share, ..), count) in CLASSES.iter().zip(counts) {
+            let sigma = (share * (1.0 - share) / n as f64).sqrt();
+            assert!((count as f64 / n as f64 - share).abs() < 5.0 * sigma, "{counts:?}");
+        }
+        let total: f64 = CLASSES.iter().map(|c| c.0).sum();
+        assert!((total - 1.0).abs() < 1e-12);
+        // A star's luminance is its flux over its disc; cool ones are red, hot ones blue; seen at
+        // frequency ratio g it is the blackbody at g T, g⁴ as bright.
+        let star = |temperature| Star { dir: Vec3::Z, flux: 1e-4, radius: 1e-3, temperature };
+        let (cool, hot) = (star(3000.0).radiance(), star(20_000.0).radiance());
+        for s in [star(3000.0), star(20_000.0)] {
+            let y = f64::from(luminance(s.radiance()));
+            assert!((y * s.solid_angle() / s.flux - 1.0).abs() < 1e-3, "{y}");
+        }
+        assert!(cool.x > cool.z && hot.z > hot.x, "{cool} {hot}");
+        let g = 1.6;
+        let shifted: Rgb = star(3000.0).seen((g, g), &());
+        let hotter = Star { temperature: 3000.0 * g, ..star(3000.0) };
+        // The hotter star of the same luminance, brightened as the blackbody's luminance grows.
+        let y = |t: f64| BlackbodyColours::get().luminance(t);
+        let expected = hotter.radiance() * (y(g * 3000.0) / y(3000.0)) as f32;
+        assert!(((shifted - expected) / expected).abs().max_element() < 1e-4, "{shifted} vs {expected}");
     }
 
     #[test]
