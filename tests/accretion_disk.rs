@@ -96,6 +96,26 @@ fn the_side_of_the_disk_coming_towards_us_is_bluer_and_brighter() {
 }
 
 #[test]
+fn photon_mapping_sees_the_disk_in_the_path_tracers_colours() {
+    // The camera pass of SPPM meets the disk as the path tracer does, and colours its
+    // blackbody at the ratio it carries from the camera (the gas's Doppler factor on top).
+    let path = film_of(&disk_scene(""));
+    let photon = film_of(&disk_scene("integrator = \"photon\""));
+    let (mut worst, mut lit) = (0.0f64, 0);
+    for y in 0..path.height() {
+        for x in 0..path.width() {
+            let (p, q) = (path.pixel_f64(x, y), photon.pixel_f64(x, y));
+            lit += usize::from(p[1] > 0.0);
+            for c in 0..3 {
+                worst = worst.max((q[c] - p[c]).abs() / p[1].max(1e-3));
+            }
+        }
+    }
+    assert!(lit > 300, "{lit} pixels see the disk");
+    assert!(worst < 1e-5, "largest difference {worst} of the pixel's green");
+}
+
+#[test]
 fn the_redshift_channel_is_cunninghams_g_from_the_rays_constants_of_motion() {
     // For gas on a circular orbit (angular velocity Ω, u^t) and a photon of angular momentum
     // over energy λ = L_z/E reaching a static observer, g = 1/(√(−g_tt) u^t (1 − Ωλ))

@@ -5,6 +5,7 @@
 
 use render::camera::Camera;
 use render::color::Rgb;
+use render::emission::{BlackbodyLight, Profile, Radiance};
 use render::film::Film;
 use render::geometry::Vec3;
 use render::material::Material;
@@ -414,4 +415,47 @@ fn an_interrupted_render_keeps_its_finished_iterations() {
     });
     assert_eq!((stats.spp_max, stats.outcome, stats.samples), (2, render::renderer::Outcome::Interrupted, 128));
     assert!((0..8).all(|x| film.samples_at(x, 3) == 1) && mean(&film) > 0.0);
+}
+
+/// The first three channels' means over the image.
+fn colour_means(film: &Film) -> [f64; 3] {
+    let n = f64::from(film.width() * film.height());
+    let mut sum = [0.0; 3];
+    for y in 0..film.height() {
+        for x in 0..film.width() {
+            for (s, v) in sum.iter_mut().zip(film.pixel_f64(x, y)) {
+                *s += v;
+            }
+        }
+    }
+    sum.map(|s| s / n)
+}
+
+#[test]
+fn sppm_colours_a_blackbody_lamps_photons_where_they_are_seen() {
+    // The room around the hole lit by a 3000 K lamp at r = 2, seen from r ≈ 5.1: its light
+    // reaches the camera at g ≈ 0.91, the blackbody at ≈ 2740 K, and off the floor nearer the
+    // hole at other ratios. Photons carry the lamp's temperature and their frequency and take
+    // their colour where they are gathered: SPPM's colour agrees with brute force's (measured:
+    // means within 0.4 %, blue over red within 0.3 %). Photons coloured and as bright as at
+    // rest put the means 7–20 % off and blue over red 11 % lower (measured).
+    let mut scene = room_around(Spacetime::schwarzschild(0.25).unwrap());
+    let light = BlackbodyLight::new(3000.0, 5.0).unwrap();
+    let mut objects = scene.world.objects(Region::Upper).to_vec();
+    objects[1].emission =
+        Some(Emission { radiance: Radiance::Blackbody(light), two_sided: false, profile: Profile::Uniform });
+    scene.world = World::new(
+        vec![diffuse(0.6)],
+        (objects, Sky::Constant(Rgb::splat(0.2))),
+        (Vec::new(), Sky::Constant(Rgb::ZERO)),
+    );
+    let (path, _) = run(&with(&scene, IntegratorKind::BruteForce, 128), 2);
+    let (sppm, stats) = run(&with(&scene, IntegratorKind::Photon, 64), 2);
+    assert_eq!(stats.nan_samples, 0);
+    let (a, b) = (colour_means(&path), colour_means(&sppm));
+    for c in 0..3 {
+        assert!((b[c] / a[c] - 1.0).abs() < 0.03, "channel {c}: brute force {a:?}, SPPM {b:?}");
+    }
+    let (hue_path, hue_sppm) = (a[2] / a[0], b[2] / b[0]);
+    assert!((hue_sppm / hue_path - 1.0).abs() < 0.02, "blue over red: brute force {hue_path}, SPPM {hue_sppm}");
 }

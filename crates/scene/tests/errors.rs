@@ -581,12 +581,6 @@ fn accretion_disks_and_blackbodies_are_checked_where_they_are_written() {
         &["equatorial plane"],
     );
     check(
-        &format!("{CAMERA}{kerr}[render]\nintegrator = \"photon\"\n[accretion_disk]\nouter_radius = 20\n"),
-        10,
-        "render.integrator",
-        &["cannot follow how a blackbody's or an accretion disk's colour shifts"],
-    );
-    check(
         &format!("{CAMERA}[render]\nintegrator = \"photon\"\ndoppler = false\n"),
         7,
         "render.doppler",

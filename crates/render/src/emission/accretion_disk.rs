@@ -9,9 +9,9 @@
 //! colour is the one the gas would show at rest (the *Interstellar* disk), without `beaming` its
 //! brightness is; without `gravitational_shift` gravity changes neither.
 
-use super::Seen;
+use super::{EmittedBlackbody, Seen};
 use crate::geometry::Vec3;
-use crate::spectrum::{BlackbodyColours, Colour};
+use crate::spectrum::BlackbodyColours;
 use spacetime::disk::ThinDisk;
 
 /// An accretion disk's emission.
@@ -91,14 +91,13 @@ impl DiskLight {
         }
     }
 
-    /// The radiance leaving the disk at `seen.point` in local direction `dir`.
-    pub fn seen<C: Colour>(&self, dir: Vec3, seen: &Seen<'_>, lambda: &C::Lambda) -> C {
+    /// The blackbody leaving the disk at `seen.point` in local direction `dir`: the ring's
+    /// temperature, and the gas's Doppler factor towards `dir`.
+    pub(super) fn emitted(&self, dir: Vec3, seen: &Seen<'_>) -> EmittedBlackbody {
         let r = self.radius(seen.point);
         let temperature = self.temperature(r);
-        if temperature == 0.0 {
-            return C::ZERO;
-        }
-        C::blackbody(temperature, self.scale, seen.shift.shown(self.doppler(r, dir, seen)), lambda)
+        let doppler = if temperature > 0.0 { self.doppler(r, dir, seen) } else { 1.0 };
+        EmittedBlackbody { temperature, scale: self.scale, doppler }
     }
 
     /// Luminance at rest averaged over the disk's area (midpoint rule in world radius).

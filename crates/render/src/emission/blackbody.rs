@@ -33,6 +33,11 @@ impl BlackbodyLight {
         self.luminance
     }
 
+    /// `luminance / Y(B(T))`: what Planck's law is multiplied by.
+    pub(super) fn scale(&self) -> f64 {
+        self.scale
+    }
+
     /// The linear Rec. 709 radiance seen with frequency ratio `g`: the blackbody at `gT`.
     pub fn seen(&self, g: f64) -> Rgb {
         self.shown((g, g), &())

@@ -58,6 +58,30 @@ pub enum Profile {
     Spot { cos_inner: f64, cos_outer: f64 },
 }
 
+/// What leaves an emitter before any shift: a colour, or a blackbody.
+enum Leaving {
+    Rgb(Rgb),
+    Blackbody(EmittedBlackbody),
+}
+
+/// Planck's law at `temperature`, times `scale`, leaving an emitter whose own motion shifts it
+/// by `doppler` towards the receiver (1 at rest).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmittedBlackbody {
+    pub temperature: f64,
+    pub scale: f64,
+    pub doppler: f64,
+}
+
+impl EmittedBlackbody {
+    /// The RGB radiance a receiver sees at frequency ratio `g` to the emitter's local observer
+    /// (the emitter's own Doppler factor comes on top): the blackbody at `g δ T`.
+    pub fn seen(&self, g: f64) -> Rgb {
+        let ratio = g * self.doppler;
+        Rgb::blackbody(self.temperature, self.scale, (ratio, ratio), &())
+    }
+}
+
 /// Where emitted light is seen from: the emitting point (world, in `region`) and the frequency
 /// ratio `g = ν_seen / ν_local` the receiver sees it with, in its parts.
 #[derive(Clone, Copy)]
@@ -119,20 +143,37 @@ impl Emission {
         if factor == 0.0 {
             return C::ZERO;
         }
-        let radiance = match &self.radiance {
-            Radiance::Rgb(rgb) => C::illuminant(*rgb, seen.shift.shown(1.0), lambda),
-            Radiance::Blackbody(light) => light.shown(seen.shift.shown(1.0), lambda),
-            Radiance::Disk(disk) => disk.seen(dir, seen, lambda),
+        let radiance = match self.leaving(dir, seen) {
+            Leaving::Rgb(rgb) => C::illuminant(rgb, seen.shift.shown(1.0), lambda),
+            Leaving::Blackbody(b) => C::blackbody(b.temperature, b.scale, seen.shift.shown(b.doppler), lambda),
         };
         radiance * factor as f32
     }
 
-    /// Whether what it emits changes colour with the frequency shift (renderers that carry RGB
-    /// power from the lights cannot follow it).
-    pub fn shifts_colour(&self) -> bool {
-        match self.radiance {
-            Radiance::Rgb(_) => false,
-            Radiance::Blackbody(_) | Radiance::Disk(_) => true,
+    /// The blackbody leaving the surface with outward normal `ng` in direction `dir`, for a
+    /// renderer that carries power from the lights and colours it where it is seen (photon
+    /// mapping); `None` for an RGB colour, or where nothing leaves.
+    pub fn blackbody(&self, ng: Vec3, dir: Vec3, seen: &Seen<'_>) -> Option<EmittedBlackbody> {
+        let factor = self.profile.factor(ng.dot(dir).abs());
+        if !self.faces(ng, dir) || factor == 0.0 {
+            return None;
+        }
+        match self.leaving(dir, seen) {
+            Leaving::Rgb(_) => None,
+            Leaving::Blackbody(b) => Some(EmittedBlackbody { scale: b.scale * factor, ..b }),
+        }
+    }
+
+    /// What leaves in direction `dir` at `seen.point`, at the profile's full strength.
+    fn leaving(&self, dir: Vec3, seen: &Seen<'_>) -> Leaving {
+        match &self.radiance {
+            Radiance::Rgb(rgb) => Leaving::Rgb(*rgb),
+            Radiance::Blackbody(light) => Leaving::Blackbody(EmittedBlackbody {
+                temperature: light.temperature(),
+                scale: light.scale(),
+                doppler: 1.0,
+            }),
+            Radiance::Disk(disk) => Leaving::Blackbody(disk.emitted(dir, seen)),
         }
     }
 

@@ -119,17 +119,6 @@ pub(crate) fn scene<'a>(
         }
         None => Sky::Constant(render::color::Rgb::ZERO),
     };
-    if settings.integrator == render::settings::IntegratorKind::Photon
-        && upper.iter().chain(&lower).any(|o| o.emission.as_ref().is_some_and(|e| e.shifts_colour()))
-    {
-        let render = root.get("render").map(|n| n.table(settings::RENDER_KEYS)).transpose()?;
-        let message = "\"photon\" carries RGB power from the lights and cannot follow how a blackbody's or an \
-                       accretion disk's colour shifts on its way (use \"path\")";
-        return Err(match render {
-            Some(t) => t.loc("integrator").err(message),
-            None => root.err(message),
-        });
-    }
     let world = World::new(b.materials, (upper, upper_sky), (lower, lower_sky));
     Ok(Scene { spacetime, axis, camera, world, settings, animation: Some(animation) })
 }

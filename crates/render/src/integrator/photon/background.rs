@@ -9,7 +9,7 @@
 use super::super::path::{leave, shift};
 use super::super::stats::PathStats;
 use crate::color::Rgb;
-use crate::emission::{Seen, Shift};
+use crate::emission::{Emission, Seen, Shift};
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::{Propagator, RayEnd};
@@ -36,6 +36,8 @@ pub(super) struct Vertex {
     pub beta: Rgb,
     /// Surface interactions so far, this one included.
     pub depth: u32,
+    /// `ν_camera / ν_local` here.
+    pub frequency: f64,
 }
 
 /// The light background paths gather: the skies of the regions (upper, lower) marked here, and
@@ -62,6 +64,16 @@ impl Background {
     }
 }
 
+/// The radiance `emission` sends a camera path towards `dir`, divided by the brightness `g⁴`
+/// of the path's frequency ratio `frequency` to the camera (its throughput holds that): light of
+/// one colour as it is at rest, a blackbody in the colour of `g T`.
+pub(super) fn emitted(emission: &Emission, ng: Vec3, dir: Vec3, rest: &Seen<'_>, frequency: f64) -> Rgb {
+    match emission.blackbody(ng, dir, rest) {
+        Some(blackbody) => blackbody.seen(frequency) / frequency.powi(4) as f32,
+        None => emission.seen::<Rgb>(ng, dir, rest, &()),
+    }
+}
+
 /// One path sample of that light scattered at `vertex` towards the camera.
 pub(super) fn radiance(
     background: Background,
@@ -72,7 +84,18 @@ pub(super) fn radiance(
     sampler: &mut Sampler,
     stats: &mut PathStats,
 ) -> Rgb {
-    let Vertex { mut region, mut p, mut ng, mut ng_local, mut frame, mut wo, mut bsdf, mut beta, mut depth } = vertex;
+    let Vertex {
+        mut region,
+        mut p,
+        mut ng,
+        mut ng_local,
+        mut frame,
+        mut wo,
+        mut bsdf,
+        mut beta,
+        mut depth,
+        mut frequency,
+    } = vertex;
     let mut radiance = Rgb::ZERO;
     while depth <= max_depth {
         let Some(sample) = bsdf.sample(wo, sampler.next_f64(), sampler.next_2d()) else { return radiance };
@@ -98,12 +121,13 @@ pub(super) fn radiance(
             RayEnd::Captured | RayEnd::Failed => return radiance,
         };
         beta *= shift(arrival.energy);
+        frequency /= arrival.energy;
         let object = world.object(arrival.region, arrival.object);
         let hit = &arrival.hit;
         ng_local = arrival.ng_local;
         if let Some(emission) = object.emission.as_ref().filter(|_| !object.shape.area().is_finite()) {
             let rest = Seen { region: arrival.region, point: hit.p, shift: Shift::NONE, propagator };
-            radiance += beta * emission.seen::<Rgb>(ng_local, -arrival.direction, &rest, &());
+            radiance += beta * emitted(emission, ng_local, -arrival.direction, &rest, frequency);
         }
         (region, p, ng, depth) = (arrival.region, hit.p, hit.ng, depth + 1);
         bsdf = world.materials[object.material].bsdf(hit.uv, hit.p);

@@ -18,7 +18,7 @@ use super::aim::{self, Target};
 use super::sky::SkySource;
 use super::slot;
 use crate::color::Rgb;
-use crate::emission::{Seen, Shift};
+use crate::emission::{EmittedBlackbody, Seen, Shift};
 use crate::geometry::Vec3;
 use crate::propagator::Propagator;
 use crate::sampling::Rng;
@@ -33,8 +33,14 @@ pub(super) struct Photon {
     pub origin: Vec3,
     /// Direction of travel in the local static frame.
     pub direction: Vec3,
-    /// Power measured by the static observer at `origin`.
+    /// Power measured by the static observer at `origin`; for a blackbody's light
+    /// (`blackbody`), what its colour where it is seen is multiplied by.
     pub power: Rgb,
+    /// The emitter's blackbody, whose colour depends on where the photon is seen (photons carry
+    /// power, not a spectrum); `None` for light of one colour.
+    pub blackbody: Option<EmittedBlackbody>,
+    /// `ν_here / ν_emitted`: the photon's frequency over its emitter's local observer's.
+    pub frequency: f64,
 }
 
 /// What photons leave from in each region (upper, lower): its area lights, aimed at its
@@ -153,16 +159,19 @@ pub(super) fn emit(
     let area = light.shape.area() * propagator.area_scale(region, point, normal);
     let p_source = p_region * (1.0 - p_sky);
     let scale = cos.abs() * area / (aimed.pdf * p_source * choice.probability);
+    let seen = Seen { region, point, shift: Shift::NONE, propagator };
+    let blackbody = emission.blackbody(local_normal, aimed.direction, &seen);
+    let colour = match blackbody {
+        Some(_) => Rgb::ONE,
+        None => emission.seen::<Rgb>(local_normal, aimed.direction, &seen, &()),
+    };
     Some(Photon {
         region,
         origin: leave(point, normal, local_normal, aimed.direction),
         direction: aimed.direction,
-        power: emission.seen::<Rgb>(
-            local_normal,
-            aimed.direction,
-            &Seen { region, point, shift: Shift::NONE, propagator },
-            &(),
-        ) * scale as f32,
+        power: colour * scale as f32,
+        blackbody,
+        frequency: 1.0,
     })
 }
 

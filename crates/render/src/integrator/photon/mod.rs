@@ -290,7 +290,7 @@ fn camera_pass(scene: &Scene, camera: &CameraPass<'_>, iteration: u32) -> (Vec<(
                         Some(ray) => {
                             let beta = Rgb::splat(ray.weight() * fs.weight as f32);
                             let start = (scene.camera.region, ray.origin, ray.direction);
-                            camera.trace(start, beta, &mut sampler, &mut stats)
+                            camera.trace(start, beta, ray.doppler, &mut sampler, &mut stats)
                         }
                         // Where the camera sees nothing (outside a fisheye's circle): black.
                         None => CameraSample { emitted: Rgb::ZERO, visible: None },

@@ -78,6 +78,7 @@ impl SkySource {
         let origin = self.centre + w * self.distance + (frame.s * x + frame.t * y) * self.radius;
         let lapse = propagator.lapse(region, origin);
         let scale = PI * self.radius * self.radius / (sample.pdf * lapse * lapse);
-        Some(Photon { region, origin, direction: -w, power: sample.radiance * scale as f32 })
+        let power = sample.radiance * scale as f32;
+        Some(Photon { region, origin, direction: -w, power, blackbody: None, frequency: 1.0 })
     }
 }

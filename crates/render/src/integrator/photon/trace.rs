@@ -15,6 +15,7 @@ use super::emit::Photon;
 use super::grid::Grid;
 use super::visible::VisiblePoint;
 use crate::color::Rgb;
+use crate::emission::EmittedBlackbody;
 use crate::geometry::{Frame, Vec3};
 use crate::propagator::{Propagator, RayEnd};
 use crate::sampling::Rng;
@@ -27,6 +28,31 @@ use spacetime::Region;
 pub(super) struct Deposit {
     pub pixel: u32,
     pub flux: Rgb,
+}
+
+/// What a photon brings to a visible point.
+#[derive(Clone, Copy, Debug)]
+struct Light {
+    power: Rgb,
+    blackbody: Option<EmittedBlackbody>,
+    /// `ν_here / ν_emitted`.
+    frequency: f64,
+}
+
+impl Light {
+    /// The photon's power in the colour the camera sees it in through `vp`. A blackbody's light
+    /// is coloured at the whole ratio `g = ν_camera / ν_emitted` (the blackbody at `g T`); its
+    /// brightness `g⁴` is divided out, being already in the photon's power and the camera
+    /// path's throughput, as for light of one colour.
+    fn seen_by(&self, vp: &VisiblePoint) -> Rgb {
+        match self.blackbody {
+            None => self.power,
+            Some(blackbody) => {
+                let g = vp.frequency * self.frequency;
+                self.power * blackbody.seen(g) / g.powi(4) as f32
+            }
+        }
+    }
 }
 
 /// The visible points of an iteration, with their gather radii and a grid per region.
@@ -44,7 +70,7 @@ pub(super) struct PhotonPass<'a> {
 impl PhotonPass<'_> {
     /// Traces one photon, appending what the visible points gather from it to `deposits`.
     pub fn trace(&self, photon: Photon, rng: &mut Rng, stats: &mut PathStats, deposits: &mut Vec<Deposit>) {
-        let Photon { mut region, mut origin, mut direction, mut power } = photon;
+        let Photon { mut region, mut origin, mut direction, mut power, blackbody, mut frequency } = photon;
         // `bounce` counts the scatterings before the current segment.
         for bounce in 0..self.max_depth {
             stats.rays += 1;
@@ -53,12 +79,14 @@ impl PhotonPass<'_> {
             };
             // Forward transport: `energy` is ν at the hit over ν at the start.
             power *= (arrival.energy * arrival.energy) as f32;
+            frequency *= arrival.energy;
             let hit = &arrival.hit;
             let object = self.world.object(arrival.region, arrival.object);
             let bsdf = self.world.materials[object.material].bsdf(hit.uv, hit.p);
             let towards_source = -arrival.direction;
             if !bsdf.is_delta() {
-                self.gather(arrival.region, hit.p, towards_source, power, bounce, deposits);
+                let light = Light { power, blackbody, frequency };
+                self.gather(arrival.region, hit.p, towards_source, light, bounce, deposits);
             }
             if bounce + 1 == self.max_depth {
                 return;
@@ -86,7 +114,7 @@ impl PhotonPass<'_> {
 
     /// Hands a photon at `p` arriving from the local direction `wi` to every visible point of
     /// `region` whose sphere holds it and whose path has depth left for it.
-    fn gather(&self, region: Region, p: Vec3, wi: Vec3, power: Rgb, bounce: u32, deposits: &mut Vec<Deposit>) {
+    fn gather(&self, region: Region, p: Vec3, wi: Vec3, light: Light, bounce: u32, deposits: &mut Vec<Deposit>) {
         let grid = match region {
             Region::Upper => &self.upper,
             Region::Lower => &self.lower,
@@ -100,7 +128,7 @@ impl PhotonPass<'_> {
             // f(wo, wi) of the visible point's BSDF: photons on the far side of a thin wall or
             // facing away give zero, but still count towards the radius reduction.
             let f = vp.bsdf.f(vp.wo, vp.frame.to_local(wi));
-            deposits.push(Deposit { pixel, flux: vp.beta * f * power });
+            deposits.push(Deposit { pixel, flux: vp.beta * f * light.seen_by(vp) });
         }
     }
 }

@@ -36,6 +36,8 @@ pub(super) struct VisiblePoint {
     /// Surface interactions used up, this one included: photons that scattered `j` times may
     /// be gathered here only while `depth + j ≤ max_depth`, as the path tracer's depth limit.
     pub depth: u32,
+    /// `ν_camera / ν_local`: the frequency ratio light from here is seen with.
+    pub frequency: f64,
 }
 
 /// What one camera path found.
@@ -58,15 +60,18 @@ pub(super) struct CameraPass<'a> {
 
 impl CameraPass<'_> {
     /// The camera path leaving `origin` of `region` along the local-frame `direction`, with
-    /// starting throughput `beta`.
+    /// starting throughput `beta`, seen by a camera that measures frequencies `doppler` times
+    /// the local observer's there.
     pub fn trace(
         &self,
         (region, origin, direction): (Region, Vec3, Vec3),
         beta: Rgb,
+        doppler: f64,
         sampler: &mut Sampler,
         stats: &mut PathStats,
     ) -> CameraSample {
         let (mut region, mut origin, mut direction, mut beta) = (region, origin, direction, beta);
+        let mut frequency = doppler;
         let mut emitted = Rgb::ZERO;
         let mut depth = 0;
         loop {
@@ -82,13 +87,14 @@ impl CameraPass<'_> {
                 SegmentEnd::Sky(sky) => return CameraSample { emitted: emitted + beta * sky, visible: None },
             };
             beta *= shift(arrival.energy);
+            frequency /= arrival.energy;
             let object = self.world.object(arrival.region, arrival.object);
             let hit = &arrival.hit;
             let ng = arrival.ng_local;
             if let Some(emission) = &object.emission {
                 let rest =
                     Seen { region: arrival.region, point: hit.p, shift: Shift::NONE, propagator: self.propagator };
-                emitted += beta * emission.seen::<Rgb>(ng, -arrival.direction, &rest, &());
+                emitted += beta * background::emitted(emission, ng, -arrival.direction, &rest, frequency);
             }
             // Camera paths end at a visible point or at the depth limit: either way at a surface.
             if depth == self.max_depth {
@@ -110,6 +116,7 @@ impl CameraPass<'_> {
                     bsdf,
                     beta,
                     depth: depth + 1,
+                    frequency,
                 };
                 if let Some(light) = self.background {
                     let (world, propagator) = (self.world, self.propagator);
@@ -140,6 +147,7 @@ impl CameraPass<'_> {
             bsdf: v.bsdf,
             beta: v.beta / area as f32,
             depth: v.depth,
+            frequency: v.frequency,
         }
     }
 }
