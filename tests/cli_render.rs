@@ -135,6 +135,7 @@ fn data_channels_go_into_the_exr_beside_the_colour() {
         "[spacetime]\ntype = \"schwarzschild\"\nmass = 1\n\
          [camera]\nposition = [0, 200, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, 1]\nfov = 8\n\
          [render]\nwidth = 9\nheight = 9\nspp = 1\nmax_depth = 0\nchannels = [\"redshift\", \"fate\", \"disk_radius\"]\n\
+         spectrum = { min = 400, max = 700, count = 4 }\n\
          [accretion_disk]\nouter_radius = 12\n",
     )
     .unwrap();
@@ -159,6 +160,10 @@ fn data_channels_go_into_the_exr_beside_the_colour() {
     for &i in &on_disk {
         assert!((6.0..=12.0).contains(&radius[i]) && redshift[i] > 0.5 && redshift[i] < 1.0, "{i}: {radius:?}");
     }
+    // The spectrum it brings, at 400, 500, 600 and 700 nm: the disk's light, none from the hole.
+    let spectrum = ["S0.400,000000nm", "S0.500,000000nm", "S0.600,000000nm", "S0.700,000000nm"].map(named);
+    assert!(on_disk.iter().all(|&i| spectrum.iter().all(|s| s[i] > 0.0)));
+    assert!(spectrum.iter().all(|s| s[centre].is_nan()) && spectrum.iter().all(|s| s[0] == 0.0));
     // A PNG cannot hold them: the command refuses before rendering.
     let png = temp("disk-data.png");
     let out = nullpath().args(["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap()]).output().unwrap();

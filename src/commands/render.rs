@@ -424,7 +424,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
 
 /// Data channels (`[render] channels`) go into the one EXR image of a whole render.
 fn check_channels(args: &Args, scene: &Scene) -> Result<(), String> {
-    if scene.settings.channels.is_empty() {
+    if !scene.settings.has_data_channels() {
         return Ok(());
     }
     if args.part.is_some() {
@@ -494,9 +494,8 @@ impl Command<'_> {
             );
         }
         if args.part.is_none() {
-            let channels = &self.scene.settings.channels;
-            let data = (!channels.is_empty())
-                .then(|| render::renderer::data_layer(self.scene, &render::renderer::propagator(self.scene), channels));
+            let data = (self.scene.settings.has_data_channels())
+                .then(|| render::renderer::data_layer(self.scene, &render::renderer::propagator(self.scene)));
             let (film, tonemap) = (render.snapshot_film(), &self.scene.settings.tonemap);
             write_image_with_data(&film, data.as_ref(), &args.output, tonemap, &metadata(&stats))
                 .map_err(|e| e.to_string())?;

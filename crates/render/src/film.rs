@@ -57,7 +57,7 @@ pub use checkpoint::{
     read_checkpoint, read_state, write_checkpoint, write_state, Checkpoint, CheckpointError, PixelChannels, StateFile,
     STATE_PREFIX,
 };
-pub use data::{DataChannel, DataLayer, FirstMet, PixelData};
+pub use data::{DataChannel, DataLayer, FirstMet, PixelData, SpectrumChannels};
 pub use filter::{
     BlackmanHarrisFilter, BoxFilter, Filter, FilterError, FilterSample, GaussianFilter, MitchellFilter, TentFilter,
     MAX_FILTER_RADIUS, MITCHELL_RECOMMENDED_B_C,

@@ -82,11 +82,20 @@ pub struct RenderSettings {
     pub geodesic_rtol: f64,
     /// Data channels written beside the colour in EXR images ([`crate::film::DataChannel`]).
     pub channels: Vec<crate::film::DataChannel>,
+    /// Spectral radiance channels written beside them ([`crate::film::SpectrumChannels`]).
+    pub spectrum: Option<crate::film::SpectrumChannels>,
     /// The frequency shifts light is shown with (`doppler`, `beaming`, `gravitational_shift`).
     pub shown: crate::emission::Shown,
     /// Paths carry radiance at sampled wavelengths instead of RGB ([`crate::spectrum::Colour`]):
     /// frequency shifts change the colour of every light, and dispersing glass splits it.
     pub spectral: bool,
+}
+
+impl RenderSettings {
+    /// Whether the image carries data beside its colour (data or spectral channels: EXR only).
+    pub fn has_data_channels(&self) -> bool {
+        !self.channels.is_empty() || self.spectrum.is_some()
+    }
 }
 
 impl Default for RenderSettings {
@@ -106,6 +115,7 @@ impl Default for RenderSettings {
             geodesic_rtol: 1e-7,
             channels: Vec::new(),
             shown: crate::emission::Shown::default(),
+            spectrum: None,
             spectral: false,
         }
     }

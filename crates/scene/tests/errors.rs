@@ -631,3 +631,15 @@ fn spectral_rendering_and_dispersion_are_checked_where_they_are_written() {
         &["ior > 1"],
     );
 }
+
+#[test]
+fn spectral_channels_are_checked_where_they_are_written() {
+    check(
+        &format!("{CAMERA}[render]\nspectrum = {{ min = 700, max = 400 }}\n"),
+        6,
+        "render.spectrum",
+        &["0 < min ≤ max"],
+    );
+    check(&format!("{CAMERA}[render]\nspectrum = {{ count = 0 }}\n"), 6, "render.spectrum.count", &["from 1 to 4096"]);
+    check(&format!("{CAMERA}[render]\nspectrum = {{ step = 5 }}\n"), 6, "render.spectrum.step", &["unknown field"]);
+}

@@ -7,6 +7,9 @@
 //! | `redshift`    | `g = ν_camera / ν_emitted` of the first thing the ray met: a surface or emitter (its local static observer; an accretion disk's gas in its own frame), or the sky (a static observer at infinity); NaN where the ray was captured or failed |
 //! | `fate`        | what the ray met first: 0 a surface, 1 an emitter, 2 the sky, 3 the sky of a wormhole's other side, 4 captured, 5 failed |
 //! | `disk_radius` | the Boyer–Lindquist radius where the ray met an accretion disk (in scene units), NaN elsewhere |
+//!
+//! and, with [`SpectrumChannels`], the spectrum the ray brings the camera, one channel per
+//! wavelength.
 
 /// A data channel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -66,11 +69,63 @@ pub struct DataLayer {
     pub height: u32,
     pub channels: Vec<DataChannel>,
     pub pixels: Vec<PixelData>,
+    /// The wavelengths of the spectral channels (none without [`SpectrumChannels`]).
+    pub wavelengths: Vec<f64>,
+    /// Pixel `i`'s spectral radiance at wavelength `k` is `spectra[i · wavelengths.len() + k]`.
+    pub spectra: Vec<f32>,
 }
 
 impl DataLayer {
     /// The values of `channel`, row-major.
     pub fn samples(&self, channel: DataChannel) -> Vec<f32> {
         self.pixels.iter().map(|p| p.value(channel)).collect()
+    }
+
+    /// Every pixel's spectral radiance at the `k`-th wavelength.
+    pub fn spectral_samples(&self, k: usize) -> Vec<f32> {
+        self.spectra.iter().skip(k).step_by(self.wavelengths.len().max(1)).copied().collect()
+    }
+}
+
+/// Spectral radiance channels: at `count` wavelengths evenly spaced from `min` to `max` nm, the
+/// spectral radiance per nm that the camera ray through each pixel's centre brings from what it
+/// meets first, as the camera sees it (every frequency shift in, as the `[render]` toggles show
+/// them): an emitter's light or the sky's; 0 from a surface that only reflects; NaN where the ray
+/// was captured or failed. The units are the renderer's: an RGB colour's spectrum under D65 and a
+/// blackbody's are normalised so that `∫ ȳ L_λ dλ / ∫ ȳ dλ` is their luminance. Channels are
+/// named `S0.λnm`, λ with six decimals after a comma, after the spectral OpenEXR layout of
+/// Fichet, Pacanowski & Wilkie (2021).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpectrumChannels {
+    min: f64,
+    max: f64,
+    count: u32,
+}
+
+impl SpectrumChannels {
+    /// The most channels one image takes.
+    pub const MAX_COUNT: u32 = 4096;
+
+    /// `count` wavelengths from `min` to `max` nm (`min` alone when `count` is 1); the message
+    /// says what is wrong.
+    pub fn new(min: f64, max: f64, count: u32) -> Result<Self, String> {
+        if !(min.is_finite() && max.is_finite() && min > 0.0 && min <= max) {
+            return Err(format!("the wavelengths must satisfy 0 < min ≤ max (nm), got {min} and {max}"));
+        }
+        if !(1..=Self::MAX_COUNT).contains(&count) || (count == 1 && min != max) {
+            return Err(format!("count must be 1–{} (1 only with min = max), got {count}", Self::MAX_COUNT));
+        }
+        Ok(Self { min, max, count })
+    }
+
+    /// The wavelengths in nm, ascending.
+    pub fn wavelengths(&self) -> Vec<f64> {
+        let step = if self.count > 1 { (self.max - self.min) / f64::from(self.count - 1) } else { 0.0 };
+        (0..self.count).map(|k| self.min + step * f64::from(k)).collect()
+    }
+
+    /// The channel name of wavelength `lambda` nm.
+    pub fn name(lambda: f64) -> String {
+        format!("S0.{}nm", format!("{lambda:.6}").replace('.', ","))
     }
 }

@@ -303,6 +303,10 @@ fn write_to(
                 for &channel in &layer.channels {
                     channels.push(AnyChannel::new(channel.name(), FlatSamples::F32(layer.samples(channel))));
                 }
+                for (k, &lambda) in layer.wavelengths.iter().enumerate() {
+                    let name = super::data::SpectrumChannels::name(lambda);
+                    channels.push(AnyChannel::new(name.as_str(), FlatSamples::F32(layer.spectral_samples(k))));
+                }
             }
             let size = (width as usize, height as usize);
             let mut image = Image::from_channels(size, AnyChannels::sort(channels.into()));

@@ -10,7 +10,9 @@ const VISIBLE_CENTRE: f64 = 538.0;
 const VISIBLE_RATE: f64 = 0.0072;
 
 /// The wavelengths a path carries (nm) and the density each was drawn with (1/nm).
-/// Invariant: every wavelength lies in [`LAMBDA_MIN`], [`LAMBDA_MAX`]; every pdf is positive.
+/// Invariant: sampled wavelengths lie in [`LAMBDA_MIN`], [`LAMBDA_MAX`] with positive densities,
+/// until [`SampledWavelengths::terminate_secondary`] sets the companions' to 0; wavelengths given
+/// to [`SampledWavelengths::at`] are positive, with density 1.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SampledWavelengths {
     lambda: [f32; N_WAVELENGTHS],
@@ -46,6 +48,12 @@ impl SampledWavelengths {
             lambda.clamp(LAMBDA_MIN, LAMBDA_MAX) as f32
         });
         Self { lambda, pdf }
+    }
+
+    /// Given wavelengths, each with density 1: for evaluating spectra at chosen wavelengths
+    /// rather than estimating integrals over them.
+    pub fn at(lambda: [f32; N_WAVELENGTHS]) -> Self {
+        Self { lambda, pdf: [1.0; N_WAVELENGTHS] }
     }
 
     /// Wavelength `i` in nm (0 is the hero).

@@ -2,7 +2,7 @@
 
 use crate::reader::{num, Node, Result, Table};
 use render::emission::Shown;
-use render::film::{Curve, DataChannel, Filter, FilterError, ToneMap, MITCHELL_RECOMMENDED_B_C};
+use render::film::{Curve, DataChannel, Filter, FilterError, SpectrumChannels, ToneMap, MITCHELL_RECOMMENDED_B_C};
 use render::integrator::photon;
 use render::settings::{Connector, IntegratorKind, Intersection, PhotonSettings, RenderSettings};
 use spacetime::Spacetime;
@@ -29,6 +29,7 @@ pub(super) const RENDER_KEYS: &[&str] = &[
     "beaming",
     "gravitational_shift",
     "spectral",
+    "spectrum",
 ];
 
 /// The largest image side accepted (as the command line's `--width`/`--height`).
@@ -118,7 +119,20 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
         },
         shown: shown(t, integrator)?,
         spectral: spectral(t, integrator)?,
+        spectrum: match t.get("spectrum") {
+            Some(n) => Some(spectrum(&n)?),
+            None => None,
+        },
     })
+}
+
+/// `spectrum = { min, max, count }`: spectral radiance channels, wavelengths in nm.
+fn spectrum(n: &Node<'_>) -> Result<SpectrumChannels> {
+    let t = n.table(&["min", "max", "count"])?;
+    let min = t.or("min", 380.0, |n| n.f64())?;
+    let max = t.or("max", 780.0, |n| n.f64())?;
+    let count = t.or("count", 41, |n| n.u32_in(1, SpectrumChannels::MAX_COUNT))?;
+    SpectrumChannels::new(min, max, count).map_err(|e| n.err(e))
 }
 
 /// `spectral = true`: paths carry sampled wavelengths. Photon mapping carries RGB power.
