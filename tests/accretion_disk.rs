@@ -123,6 +123,42 @@ fn the_side_of_the_disk_coming_towards_us_is_bluer_and_brighter() {
 }
 
 #[test]
+fn a_disks_texture_modulates_its_brightness_not_its_colour() {
+    // Face on from its axis, a disk about a Schwarzschild hole with a checker of brightness 1 and
+    // 0.25 over half turns of azimuth: the pixels on the bright half are those of the plain
+    // disk, those on the other a quarter of them, in every channel.
+    let disk = |texture: &str| {
+        format!(
+            "[spacetime]\ntype = \"schwarzschild\"\nmass = 1\n\
+             [camera]\nposition = [0, 200, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, 1]\nfov = 8\n\
+             [render]\nwidth = 24\nheight = 24\nspp = 1\nmax_depth = 0\n\
+             [accretion_disk]\nouter_radius = 12\n{texture}"
+        )
+    };
+    let plain = film_of(&disk(""));
+    let textured = film_of(&disk("texture = { type = \"checker\", a = 1, b = 0.25, uv_scale = [1, 2] }\n"));
+    let (mut bright, mut dim) = (0u32, 0u32);
+    for y in 0..24 {
+        for x in 0..24 {
+            let (p, q) = (plain.pixel_f64(x, y), textured.pixel_f64(x, y));
+            if p[1] == 0.0 {
+                continue;
+            }
+            let ratio: Vec<f64> = (0..3).map(|c| q[c] / p[c]).collect();
+            if ratio.iter().all(|r| (r - 1.0).abs() < 1e-6) {
+                bright += 1;
+            } else if ratio.iter().all(|r| (r - 0.25).abs() < 1e-6) {
+                dim += 1;
+            } else {
+                // Pixels whose centre lies on a border between the halves.
+                assert!(ratio.iter().all(|r| (0.25..=1.0).contains(r)), "({x}, {y}): {ratio:?}");
+            }
+        }
+    }
+    assert!(bright > 100 && dim > 100 && bright.abs_diff(dim) < bright / 5, "{bright} bright, {dim} dim");
+}
+
+#[test]
 fn photon_mapping_sees_the_disk_in_the_path_tracers_colours() {
     // The camera pass of SPPM meets the disk as the path tracer does, and colours its
     // blackbody at the ratio it carries from the camera (the gas's Doppler factor on top).

@@ -8,11 +8,17 @@
 //! `g δ T`. The teaching toggles ([`super::Shown`]) take the parts apart: without `doppler` the
 //! colour is the one the gas would show at rest (the *Interstellar* disk), without `beaming` its
 //! brightness is; without `gravitational_shift` gravity changes neither.
+//!
+//! An optional artistic texture ([`DiskLight::with_texture`]) modulates the brightness of the
+//! gas, never its colour, which stays the blackbody's.
 
 use super::{EmittedBlackbody, Seen};
-use crate::geometry::Vec3;
+use crate::color::luminance;
+use crate::geometry::{Frame, Vec3};
 use crate::spectrum::BlackbodyColours;
+use crate::texture::Texture;
 use spacetime::disk::ThinDisk;
+use std::sync::Arc;
 
 /// An accretion disk's emission.
 #[derive(Debug)]
@@ -25,14 +31,26 @@ pub struct DiskLight {
     peak_flux: f64,
     /// `luminance / Y(B(T_peak))`: the hottest ring has `luminance` at rest.
     scale: f64,
-    /// Luminance at rest averaged over the disk's area.
+    /// Luminance at rest averaged over the disk's area (without the texture: what light
+    /// sampling weighs the disk by, which a texture only makes less than ideal).
     mean_luminance: f64,
+    /// The artistic texture, if any, and the frame its azimuth is measured in (`x` at 0,
+    /// counter-clockwise about `axis`).
+    texture: Option<(Arc<Texture>, Frame)>,
 }
 
 impl PartialEq for DiskLight {
+    /// The same disk: the same physics, and the same texture object (textures are not compared
+    /// by value).
     fn eq(&self, other: &Self) -> bool {
-        (self.disk.orbits(), self.disk.outer_radius(), self.axis, self.peak_temperature, self.scale)
-            == (other.disk.orbits(), other.disk.outer_radius(), other.axis, other.peak_temperature, other.scale)
+        let same_texture = match (&self.texture, &other.texture) {
+            (None, None) => true,
+            (Some((a, _)), Some((b, _))) => Arc::ptr_eq(a, b),
+            (Some(_), None) | (None, Some(_)) => false,
+        };
+        same_texture
+            && (self.disk.orbits(), self.disk.outer_radius(), self.axis, self.peak_temperature, self.scale)
+                == (other.disk.orbits(), other.disk.outer_radius(), other.axis, other.peak_temperature, other.scale)
     }
 }
 
@@ -47,10 +65,35 @@ impl DiskLight {
             return None;
         }
         let (_, peak_flux) = disk.peak();
-        let mut light =
-            Self { disk, axis, peak_temperature, peak_flux, scale: luminance / y_peak, mean_luminance: 0.0 };
+        let mut light = Self {
+            disk,
+            axis,
+            peak_temperature,
+            peak_flux,
+            scale: luminance / y_peak,
+            mean_luminance: 0.0,
+            texture: None,
+        };
         light.mean_luminance = light.average_luminance();
         Some(light)
+    }
+
+    /// The disk with `texture` over it: at texture coordinates `u` = how far out from the inner
+    /// to the outer edge (0 to 1, in world radius) and `v` = the azimuth over 2π, counter-clockwise
+    /// about the axis, the texture's luminance multiplies the gas's brightness.
+    pub fn with_texture(self, texture: Texture) -> Self {
+        let frame = Frame::from_normal(self.axis);
+        Self { texture: Some((Arc::new(texture), frame)), ..self }
+    }
+
+    /// The texture's brightness factor at world point `p` of the disk (1 without a texture).
+    fn texture_factor(&self, p: Vec3) -> f64 {
+        let Some((texture, frame)) = &self.texture else { return 1.0 };
+        let local = frame.to_local(p);
+        let (inner, outer) = self.world_radii();
+        let u = ((local.x.hypot(local.y) - inner) / (outer - inner)).clamp(0.0, 1.0);
+        let v = local.y.atan2(local.x).rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU;
+        f64::from(luminance(texture.eval([u, v], p))).max(0.0)
     }
 
     /// The world radii of the disk's edges (in the chart's equatorial plane).
@@ -97,7 +140,7 @@ impl DiskLight {
         let r = self.radius(seen.point);
         let temperature = self.temperature(r);
         let doppler = if temperature > 0.0 { self.doppler(r, dir, seen) } else { 1.0 };
-        EmittedBlackbody { temperature, scale: self.scale, doppler }
+        EmittedBlackbody { temperature, scale: self.scale * self.texture_factor(seen.point), doppler }
     }
 
     /// Luminance at rest averaged over the disk's area (midpoint rule in world radius).

@@ -16,7 +16,7 @@ use spacetime::disk::ThinDisk;
 use spacetime::Spacetime;
 use std::sync::Arc;
 
-pub(super) const KEYS: &[&str] = &["outer_radius", "temperature", "luminance", "normal"];
+pub(super) const KEYS: &[&str] = &["outer_radius", "temperature", "luminance", "normal", "texture"];
 
 /// The hottest ring's temperature, K, unless the file says: a white-blue disk.
 const DEFAULT_TEMPERATURE: f64 = 10_000.0;
@@ -58,6 +58,14 @@ impl Builder<'_> {
         if !(luminance >= 0.0 && luminance.is_finite()) {
             return Err(t.loc("luminance").err(format!("must be ≥ 0, got {}", num(luminance))));
         }
+        let light = match t.get("texture") {
+            Some(n) => {
+                let texture = self.texture(&n)?;
+                texture.validate().map_err(|e| n.err(e))?;
+                light.with_texture(texture)
+            }
+            None => light,
+        };
         let (inner_world, outer_world) = light.world_radii();
         let shape = Shape::annulus(Vec3::ZERO, normal, inner_world, outer_world, &Transform::identity())
             .map_err(|e| n.err(e.to_string()))?;

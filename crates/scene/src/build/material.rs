@@ -126,7 +126,7 @@ impl Builder<'_> {
     }
 
     /// A colour or a texture table, with colours in `[0, 1]`.
-    fn texture(&mut self, n: &Node<'_>) -> Result<Texture> {
+    pub(super) fn texture(&mut self, n: &Node<'_>) -> Result<Texture> {
         if !n.is_table() {
             return albedo(n).map(Texture::Constant);
         }
