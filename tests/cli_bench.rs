@@ -1,5 +1,6 @@
 //! `nullpath bench room` as a user runs it: one JSON object with both scenes' measurements and
-//! the curved ÷ flat ratio of each interleaved pair with their median; bad sizes are refused.
+//! the curved ÷ flat ratio of each interleaved pair with their median (and `bench spectral`'s
+//! spectral ÷ RGB); bad sizes are refused.
 
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
@@ -29,6 +30,19 @@ fn the_room_reports_each_pairs_ratio_and_their_median() {
     assert!(pairs.iter().all(|r| r.is_finite() && *r > 0.0), "{pairs:?}");
     pairs.sort_by(f64::total_cmp);
     assert_eq!(v["curved_over_flat"]["median"].as_f64().unwrap(), pairs[1]);
+}
+
+#[test]
+fn the_spectral_workload_pairs_spectral_and_rgb_renders_of_the_room() {
+    let out = nullpath(&["bench", "spectral", "--size", "4", "--repeat", "2", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["workload"], "spectral");
+    assert_eq!(v["spectral"]["workload"], "room (spectral)");
+    assert_eq!(v["rgb"]["workload"], "room (RGB)");
+    let pairs = v["spectral_over_rgb"]["pairs"].as_array().unwrap();
+    assert_eq!(pairs.len(), 2);
+    assert!(v["spectral_over_rgb"]["median"].as_f64().unwrap() > 0.0);
 }
 
 #[test]

@@ -170,3 +170,19 @@ fn data_channels_go_into_the_exr_beside_the_colour() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("only an .exr image holds"));
 }
+
+#[test]
+fn spectral_rendering_is_one_flag_and_photon_mapping_refuses_it() {
+    let cornell = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/cornell-box.toml");
+    let out = temp("cornell-spectral.exr");
+    let args = ["render", cornell, "-o", out.to_str().unwrap(), "--width", "8", "--height", "8", "--spp", "2"];
+    let status = nullpath().args(args).arg("--spectral").arg("--quiet").status().unwrap();
+    assert!(status.success());
+    let image = exr::prelude::read_all_flat_layers_from_file(&out).unwrap();
+    let red = image.layer_data[0].channel_data.list.iter().find(|c| c.name.to_string() == "R").unwrap();
+    assert!(red.sample_data.values_as_f32().any(|v| v > 0.0), "a lit box");
+    let kerr = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/kerr-room.toml");
+    let refused = nullpath().args(["render", kerr, "-o", out.to_str().unwrap(), "--spectral"]).output().unwrap();
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--spectral needs a path tracer"));
+}
