@@ -10,6 +10,12 @@
 //! gathered by paths continued from the visible points (see `background`). The estimate is
 //! consistent: it converges to the path tracer's image as iterations grow.
 //!
+//! Photons carry RGB power. A blackbody's photons (a lamp's, an accretion disk's gas) carry its
+//! temperature and their frequency instead of a colour, and are coloured where a visible point
+//! gathers them, at the whole frequency ratio from the emitter to the camera (see `trace`), so
+//! gravity and motion shift their colour as the path tracer's; a star field's stars are carried
+//! at their colours at rest, shifted in brightness only.
+//!
 //! Determinism: camera paths draw from the stream of (seed, pixel, iteration); photons are
 //! traced in fixed chunks, each with the stream of (seed, chunk, iteration), and what they
 //! deposit is summed chunk by chunk in chunk order. The image does not depend on the threads.
