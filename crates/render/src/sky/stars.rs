@@ -23,7 +23,7 @@
 //!   `star_radius` for the faintest to 4× that for the brightest;
 //! - every star is a blackbody: its temperature is drawn from the spectral classes of the naked-eye
 //!   sky, roughly in the proportions of the Yale Bright Star Catalogue (stars to magnitude 6.5: a
-//!   fifth B and A each, under a third K, a few percent M; see [`CLASSES`]), log-uniform within
+//!   fifth B and A each, under a third K, a few percent M; see `CLASSES`), log-uniform within
 //!   the class, and its radiance is Planck's law at that temperature scaled to the star's
 //!   luminance. Seen with a frequency shift `g` (a moving camera, a camera deep in a well) a star
 //!   is the blackbody at `gT`: the stars ahead of a fast camera turn blue, in RGB and in spectral
