@@ -6,7 +6,12 @@
 //! vertex: the product of the camera's Doppler factor and the shifts between the observers at the
 //! ends of its segments (gravitational red- and blueshift). Emitters are asked for their light
 //! as seen at that ratio ([`Emission::seen`](crate::emission::Emission::seen)): a blackbody
-//! changes colour, an RGB colour brightens as `g⁴` (`I_ν/ν³` is invariant).
+//! changes colour, an RGB colour brightens as `g⁴` (`I_ν/ν³` is invariant) and, in spectral
+//! rendering, changes colour too.
+//!
+//! The throughput and radiance are RGB triples or, in spectral rendering, values at the path's
+//! sampled wavelengths ([`Colour`]): one transport written for both, the wavelengths drawn from
+//! the sampler at the path's start and converted to RGB at its end.
 //!
 //! Direct light is also sampled on the emitters and combined with BSDF sampling by multiple
 //! importance sampling (Veach 1997, power heuristic), by whichever strategy joins light points to
