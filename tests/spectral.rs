@@ -130,7 +130,7 @@ fn a_box_whose_colours_meet_only_white_renders_as_in_rgb() {
 fn a_star_ahead_of_a_moving_camera_is_the_blackbody_at_the_doppler_shifted_temperature() {
     // The brightest of a sparse star field, straight ahead of a camera moving towards it at v: it
     // stays ahead (no aberration on the axis) and is seen as the blackbody at D·T, D⁴ brighter in
-    // total, in RGB exactly and in spectral rendering within noise.
+    // total, by the path tracer and photon mapping exactly and in spectral rendering within noise.
     let sky = "[sky]\ntype = \"stars\"\nseed = 3\ndensity = 2\nbrightness = 1\nstar_radius_deg = 1\n";
     let at_rest = scene::parse(
         &format!("[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = 40\n{sky}"),
@@ -163,6 +163,12 @@ fn a_star_ahead_of_a_moving_camera_is_the_blackbody_at_the_doppler_shifted_tempe
     let rgb = mean_and_error(&film_of(&text(false))).0;
     for c in 0..3 {
         assert!((rgb[c] / f64::from(expected[c]) - 1.0).abs() < 1e-3, "RGB: {rgb:?} against {expected}");
+    }
+    // Photon mapping's camera paths see it the same way.
+    let photon =
+        mean_and_error(&film_of(&text(false).replace("max_depth = 0", "max_depth = 0\nintegrator = \"photon\""))).0;
+    for c in 0..3 {
+        assert!((photon[c] / f64::from(expected[c]) - 1.0).abs() < 1e-3, "photon: {photon:?} against {expected}");
     }
     let rest: render::color::Rgb = star.seen((1.0, 1.0), &());
     assert!(expected.z / expected.x > 1.3 * rest.z / rest.x, "bluer: {rest} → {expected}");

@@ -2,6 +2,7 @@
 measure its wall and CPU time, read its image back as a float64 H x W x 3 array."""
 import json
 import os
+import shlex
 import subprocess
 import sys
 import time
@@ -14,6 +15,8 @@ SCENE = os.path.join(REPO, "scenes", "cornell-box.toml")
 MI_WORKER = os.path.join(HERE, "mi_cornell.py")
 NULLPATH = os.environ.get("NULLPATH", "/tmp/nullpath-cornell")
 RUN_DIR = os.environ.get("CORNELL_RUN_DIR", "/work/peers-run/cornell")
+# extra flags for every `nullpath render` (e.g. NULLPATH_ARGS=--spectral); the scripts' --spectral adds it too
+NULLPATH_ARGS = shlex.split(os.environ.get("NULLPATH_ARGS", ""))
 NICE = ["nice", "-n", "19"]
 os.environ.setdefault("DRJIT_LIBLLVM_PATH", "/usr/lib/x86_64-linux-gnu/libLLVM-19.so")
 
@@ -48,19 +51,22 @@ def _child_cpu():
     return r.ru_utime + r.ru_stime
 
 
-def run_nullpath(spp, threads, seed, res, out_exr):
-    """One `nullpath render` of the Cornell box; returns a record with wall/cpu/render times."""
+def run_nullpath(spp, threads, seed, res, out_exr, extra_args=()):
+    """One `nullpath render` of the Cornell box; returns a record with wall/cpu/render times.
+    extra_args (and $NULLPATH_ARGS) are appended to the command line, e.g. ["--spectral"]."""
     stats = out_exr + ".stats.json"
+    args = list(NULLPATH_ARGS) + [x for x in extra_args if x not in NULLPATH_ARGS]
     cmd = NICE + [NULLPATH, "render", SCENE, "--width", str(res), "--height", str(res),
                   "--spp", str(spp), "--seed", str(seed), "--threads", str(threads),
-                  "--quiet", "--stats", stats, "-o", out_exr]
+                  "--quiet", "--stats", stats, "-o", out_exr] + args
     c0 = _child_cpu()
     _, wall = timed(cmd)
     cpu = _child_cpu() - c0
     with open(stats) as f:
         st = json.load(f)
     render_s = st["seconds"]
-    return {"renderer": "nullpath", "variant": "nullpath", "sampler": "sobol-owen", "spp": st["spp"],
+    return {"renderer": "nullpath", "variant": "nullpath-spectral" if "--spectral" in args else "nullpath",
+            "sampler": "sobol-owen", "spp": st["spp"], "args": args,
             "threads": threads, "seed": seed, "wall_s": wall, "cpu_s": cpu, "render_s": render_s,
             "startup_s": wall - render_s, "image": out_exr, "cmd": " ".join(cmd)}
 

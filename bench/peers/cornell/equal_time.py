@@ -30,6 +30,14 @@ Python import, scene load and LLVM JIT included) and is reported split into star
    its MSE and wall there are interpolated between the two (log-log in spp; spp shown "lo-hi").
 
 Results: $CORNELL_RUN_DIR/equal_time_RES.json (everything, each command line included).
+
+--spectral: the same in spectral mode: nullpath gets `--spectral` (also: $NULLPATH_ARGS, appended to
+every nullpath command), Mitsuba runs llvm_ad_spectral / scalar_spectral (reference: llvm_ad_spectral);
+the reference goes to ref_RES_spectral, the study to samplers_RES_spectral.json, the results to
+equal_time_RES_spectral.json. nullpath's spectral renders start by optimising its RGB -> spectrum
+table (about 1.2 s, once per process, inside the render's own timer): it is measured per thread count
+(1-spp spectral render minus 1-spp RGB render, median of 3) and reported as a separate ratio with
+nullpath's wall less that time ("no table"). --no-study skips the sampler study (needs --sampler).
 """
 import argparse
 import glob
@@ -45,19 +53,30 @@ import common
 import mi_cornell
 
 MI_REF_VARIANT = "llvm_ad_rgb"
+MODE = {"spectral": False, "suffix": "", "llvm": "llvm_ad_rgb", "scalar": "scalar_rgb", "nullpath_args": []}
+
+
+def set_spectral(on):
+    global MI_REF_VARIANT
+    if on:
+        MODE.update(spectral=True, suffix="_spectral", llvm="llvm_ad_spectral", scalar="scalar_spectral",
+                    nullpath_args=["--spectral"])
+    MI_REF_VARIANT = MODE["llvm"]
 
 
 # --------------------------------------------------------------------------------------- reference
-def build_reference(res, n_chunks, n_spp, m_chunks, m_spp, threads):
-    d = os.path.join(common.RUN_DIR, "ref_%d" % res)
+def build_reference(res, n_chunks, n_spp, m_chunks, m_spp, threads, m_sampler="independent"):
+    d = os.path.join(common.RUN_DIR, "ref_%d%s" % (res, MODE["suffix"]))
     os.makedirs(d, exist_ok=True)
     meta_path = os.path.join(d, "chunks.json")
     meta = {"res": res, "nullpath_spp": n_spp, "mitsuba_spp": m_spp, "mitsuba_variant": MI_REF_VARIANT,
-            "mitsuba_sampler": "independent", "runs": []}
+            "mitsuba_sampler": m_sampler, "nullpath_args": common.NULLPATH_ARGS + MODE["nullpath_args"],
+            "runs": []}
     if os.path.exists(meta_path):
         with open(meta_path) as f:
             old = json.load(f)
-        if (old["nullpath_spp"], old["mitsuba_spp"]) != (n_spp, m_spp):
+        if (old["nullpath_spp"], old["mitsuba_spp"], old.get("mitsuba_sampler", "independent")) != (
+                n_spp, m_spp, m_sampler):
             sys.exit("%s was made with other chunk sizes (%d, %d spp): use those or another "
                      "CORNELL_RUN_DIR" % (meta_path, old["nullpath_spp"], old["mitsuba_spp"]))
         meta = old
@@ -71,9 +90,9 @@ def build_reference(res, n_chunks, n_spp, m_chunks, m_spp, threads):
         if os.path.exists(path):
             continue
         if kind == "n":
-            r = common.run_nullpath(n_spp, threads, 2000 + k, res, path)
+            r = common.run_nullpath(n_spp, threads, 2000 + k, res, path, MODE["nullpath_args"])
         else:
-            r = common.run_mitsuba(MI_REF_VARIANT, "independent", m_spp, threads, 3000 + k, res, path)
+            r = common.run_mitsuba(MI_REF_VARIANT, m_sampler, m_spp, threads, 3000 + k, res, path)
         meta["runs"].append({x: r[x] for x in ("renderer", "spp", "seed", "wall_s", "cpu_s", "cmd")})
         print("  reference chunk %s %d: %.1f s wall, %.1f s CPU" % (r["renderer"], k, r["wall_s"], r["cpu_s"]),
               flush=True)
@@ -99,7 +118,7 @@ def build_reference(res, n_chunks, n_spp, m_chunks, m_spp, threads):
     np.save(os.path.join(d, "mitsuba_mean.npy"), mm)
     info = {
         "nullpath": {"chunks": kn, "spp_each": n_spp, "mse": vn, "mean_rgb": mn.reshape(-1, 3).mean(0).tolist()},
-        "mitsuba": {"chunks": km, "spp_each": m_spp, "variant": MI_REF_VARIANT, "mse": vm,
+        "mitsuba": {"chunks": km, "spp_each": m_spp, "variant": MI_REF_VARIANT, "sampler": m_sampler, "mse": vm,
                     "mean_rgb": mm.reshape(-1, 3).mean(0).tolist()},
         "weight_nullpath": wn, "mse_ref": float((se ** 2).mean()),
         "mean_rgb": ref.reshape(-1, 3).mean(0).tolist(),
@@ -126,13 +145,13 @@ def errors(img, R):
 
 # ------------------------------------------------------------------------------------ sampler study
 def sampler_study(R, res, spps, seeds, threads, force=False):
-    path = os.path.join(common.RUN_DIR, "samplers_%d.json" % res)
+    path = os.path.join(common.RUN_DIR, "samplers_%d%s.json" % (res, MODE["suffix"]))
     if os.path.exists(path) and not force:
         with open(path) as f:
             st = json.load(f)
         if st["spps"] == spps and st["seeds"] == seeds and st.get("version") == 2:
             return st
-    d = os.path.join(common.RUN_DIR, "study")
+    d = os.path.join(common.RUN_DIR, "study" + MODE["suffix"])
     os.makedirs(d, exist_ok=True)
     rows = []
 
@@ -148,7 +167,7 @@ def sampler_study(R, res, spps, seeds, threads, force=False):
             for sampler in mi_cornell.SAMPLERS:
                 for cnt in counts(sampler, spp):
                     seed = 4000 + 100 * s + cnt
-                    r = common.run_mitsuba("llvm_ad_rgb", sampler, cnt, threads, seed, res,
+                    r = common.run_mitsuba(MODE["llvm"], sampler, cnt, threads, seed, res,
                                            os.path.join(d, "m_%s_%d_%d.npy" % (sampler, cnt, s)))
                     e = errors(common.load_image(r), R)
                     rows.append({"sampler": sampler, "level": spp, "spp_requested": cnt, "spp": r["spp"],
@@ -157,7 +176,8 @@ def sampler_study(R, res, spps, seeds, threads, force=False):
         # nullpath at the same spp, for information
         for s in range(seeds):
             seed = 4000 + 100 * s + spp
-            r = common.run_nullpath(spp, threads, seed, res, os.path.join(d, "n_%d_%d.exr" % (spp, s)))
+            r = common.run_nullpath(spp, threads, seed, res, os.path.join(d, "n_%d_%d.exr" % (spp, s)),
+                                    MODE["nullpath_args"])
             e = errors(common.load_image(r), R)
             rows.append({"sampler": "nullpath-sobol", "level": spp, "spp_requested": spp, "spp": r["spp"],
                          "seed": seed, "wall_s": r["wall_s"], "render_s": r["render_s"], "cpu_s": r["cpu_s"], **e})
@@ -238,10 +258,10 @@ def bracket_spp(sampler, target):
 
 
 def run_config(cfg, spp, threads, seed, res, tag):
-    d = os.path.join(common.RUN_DIR, "runs")
+    d = os.path.join(common.RUN_DIR, "runs" + MODE["suffix"])
     os.makedirs(d, exist_ok=True)
     if cfg["renderer"] == "nullpath":
-        return common.run_nullpath(spp, threads, seed, res, os.path.join(d, "%s.exr" % tag))
+        return common.run_nullpath(spp, threads, seed, res, os.path.join(d, "%s.exr" % tag), cfg.get("args", []))
     return common.run_mitsuba(cfg["variant"], cfg["sampler"], spp, threads, seed, res,
                               os.path.join(d, "%s.npy" % tag))
 
@@ -272,6 +292,29 @@ def calibrate(cfgs, threads, res, lo, hi):
     return fit
 
 
+def measure_table(threads, res, n=3):
+    """nullpath --spectral's one-off RGB -> spectrum table optimisation: median wall of a 1-spp
+    spectral render minus that of a 1-spp RGB render (same binary, same thread count)."""
+    d = os.path.join(common.RUN_DIR, "runs" + MODE["suffix"])
+    os.makedirs(d, exist_ok=True)
+    rgb_args = [x for x in common.NULLPATH_ARGS if x != "--spectral"]
+    saved = common.NULLPATH_ARGS
+    walls = {"spectral": [], "rgb": []}
+    try:
+        for i in range(n):
+            for kind in ("spectral", "rgb"):
+                common.NULLPATH_ARGS = rgb_args + (["--spectral"] if kind == "spectral" else [])
+                r = common.run_nullpath(1, threads, 9500 + i, res,
+                                        os.path.join(d, "table_%s_t%d.exr" % (kind, threads)))
+                walls[kind].append(r["wall_s"])
+    finally:
+        common.NULLPATH_ARGS = saved
+    t = float(np.median(walls["spectral"]) - np.median(walls["rgb"]))
+    print("  nullpath spectral table (1-spp spectral - 1-spp RGB wall, %d thread(s)): %.2f s" % (threads, t),
+          flush=True)
+    return {"table_s": t, "walls": walls}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--res", type=int, default=128)
@@ -284,6 +327,10 @@ def main():
                     help="more llvm_ad_rgb samplers for the equal-time runs, comma-separated ('' for none)")
     ap.add_argument("--ref-nullpath", default="16x2048", help="reference chunks x spp for nullpath")
     ap.add_argument("--ref-mitsuba", default="16x8192", help="reference chunks x spp for Mitsuba llvm")
+    ap.add_argument("--ref-mitsuba-sampler", default="independent", help="sampler of Mitsuba's reference chunks")
+    ap.add_argument("--spectral", action="store_true",
+                    help="spectral mode: nullpath --spectral, Mitsuba llvm_ad_spectral / scalar_spectral")
+    ap.add_argument("--no-study", action="store_true", help="skip the sampler study (use --sampler)")
     ap.add_argument("--ref-threads", type=int, default=2)
     ap.add_argument("--study-spp", default="16,64,256")
     ap.add_argument("--study-seeds", type=int, default=3)
@@ -295,39 +342,50 @@ def main():
     ap.add_argument("--study-only", action="store_true")
     ap.add_argument("--redo-study", action="store_true")
     a = ap.parse_args()
+    set_spectral(a.spectral or "--spectral" in common.NULLPATH_ARGS)
     if a.report:
         return report(a.report, a.main_only)
+    if a.no_study and not a.sampler:
+        sys.exit("--no-study needs --sampler")
 
     t_begin = time.time()
     nc, ns = (int(x) for x in a.ref_nullpath.split("x"))
     mc, ms = (int(x) for x in a.ref_mitsuba.split("x"))
     print("== reference (%d x %d spp nullpath, %d x %d spp Mitsuba %s, %d threads)" % (
         nc, ns, mc, ms, MI_REF_VARIANT, a.ref_threads), flush=True)
-    R = build_reference(a.res, nc, ns, mc, ms, a.ref_threads)
+    R = build_reference(a.res, nc, ns, mc, ms, a.ref_threads, a.ref_mitsuba_sampler)
     if a.reference_only:
         return
     print("== Mitsuba samplers", flush=True)
-    st = sampler_study(R, a.res, [int(x) for x in a.study_spp.split(",")], a.study_seeds, 2,
-                       force=a.redo_study)
-    print_study(st)
+    if a.no_study:
+        st = {"best": None}
+    else:
+        st = sampler_study(R, a.res, [int(x) for x in a.study_spp.split(",")], a.study_seeds, 2,
+                           force=a.redo_study)
+        print_study(st)
     if a.study_only:
         return
     sampler = a.sampler or st["best"]
-    cfgs = [{"name": "nullpath", "renderer": "nullpath"},
-            {"name": "mitsuba-llvm-" + sampler, "renderer": "mitsuba", "variant": "llvm_ad_rgb", "sampler": sampler}]
+    cfgs = [{"name": "nullpath", "renderer": "nullpath", "args": MODE["nullpath_args"]},
+            {"name": "mitsuba-llvm-" + sampler, "renderer": "mitsuba", "variant": MODE["llvm"], "sampler": sampler}]
     for extra in (x for x in a.extra_sampler.split(",") if x and x != sampler):
-        cfgs.append({"name": "mitsuba-llvm-" + extra, "renderer": "mitsuba", "variant": "llvm_ad_rgb",
+        cfgs.append({"name": "mitsuba-llvm-" + extra, "renderer": "mitsuba", "variant": MODE["llvm"],
                      "sampler": extra})
     if not a.no_scalar:
-        cfgs.append({"name": "mitsuba-scalar-" + sampler, "renderer": "mitsuba", "variant": "scalar_rgb",
+        cfgs.append({"name": "mitsuba-scalar-" + sampler, "renderer": "mitsuba", "variant": MODE["scalar"],
                      "sampler": sampler})
     lo, hi = (int(x) for x in a.calib_spp.split(","))
     results = {"machine": {"node": platform.node(), "cpus": os.cpu_count(), "load_avg_start": os.getloadavg()},
                "args": vars(a), "reference": R["info"], "sampler": sampler, "study_best": st["best"],
-               "calibration": {}, "cells": []}
-    out_path = a.out or os.path.join(common.RUN_DIR, "equal_time_%d.json" % a.res)
+               "calibration": {}, "cells": [], "spectral": MODE["spectral"],
+               "nullpath_args": common.NULLPATH_ARGS + MODE["nullpath_args"], "table": {}}
+    out_path = a.out or os.path.join(common.RUN_DIR, "equal_time_%d%s.json" % (a.res, MODE["suffix"]))
     for threads in (int(x) for x in a.threads.split(",")):
         print("== %d thread(s)" % threads, flush=True)
+        table_s = None
+        if MODE["spectral"]:
+            results["table"][str(threads)] = measure_table(threads, a.res)
+            table_s = results["table"][str(threads)]["table_s"]
         for budget in (float(x) for x in a.budgets.split(",")):
             # calibrated right before each cell: the shared machine's load drifts within minutes
             fit = calibrate(cfgs, threads, a.res, lo, hi)
@@ -365,7 +423,7 @@ def main():
                     print("  %g s, %d thr, round %d: %-28s %5d spp  wall %.2f s (start-up %.2f)  CPU %.2f s  "
                           "RMSE %.5f" % (budget, threads, rep, label, rec["spp"], rec["wall_s"], rec["startup_s"],
                                          rec["cpu_s"], max(rec["mse"], 0) ** 0.5), flush=True)
-            cell = {"threads": threads, "budget_s": budget, "runs": runs,
+            cell = {"threads": threads, "budget_s": budget, "runs": runs, "nullpath_table_s": table_s,
                     "labels": list(dict.fromkeys(j[2] for j in jobs)),
                     "bracketed": {k: list(v) for k, v in bracketed.items()}}
             summarize_cell(cell)
@@ -416,9 +474,15 @@ def summarize_cell(cell):
         b["rmse_time_scaled"] = max(b["mse"] * b["wall_s"] / budget, 0) ** 0.5
         b["rmse_cpu_scaled"] = max(b["mse"] * b["cpu_s"] / (budget * cell["threads"]), 0) ** 0.5
     base = by["nullpath"]
+    tab = cell.get("nullpath_table_s")
+    if tab is not None:
+        # nullpath's spectral table optimisation (one-off per process) taken out of its wall
+        base["rmse_time_scaled_no_table"] = max(base["mse"] * max(base["wall_s"] - tab, 1e-3) / budget, 0) ** 0.5
     for label, b in by.items():
         for k in ("rmse", "rmse_time_scaled", "rmse_cpu_scaled"):
             b[k + "_ratio"] = b[k] / max(base[k], 1e-30)
+        if tab is not None:
+            b["rmse_time_scaled_no_table_ratio"] = b["rmse_time_scaled"] / max(base["rmse_time_scaled_no_table"], 1e-30)
     cell["by"] = by
     return cell
 
@@ -427,16 +491,21 @@ def print_table(results, main_only=False):
     ref = results["reference"]
     print("\n== equal-time RMSE (%s; reference noise rmse %.1e subtracted; mean MSE over %d rounds)" % (
         "%dx%d" % (results["args"]["res"], results["args"]["res"]), ref["mse_ref"] ** 0.5, results["args"]["reps"]))
+    spec = any(c.get("nullpath_table_s") is not None for c in results["cells"])
     print("| threads | budget s | renderer | spp | wall s (start-up + render) | CPU s | RMSE | ÷ nullpath | "
-          "÷ nullpath, time-scaled | ÷ nullpath, CPU-scaled |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "÷ nullpath, time-scaled | ÷ nullpath, CPU-scaled |" + (" ÷ nullpath, time-scaled, no table |" if spec else ""))
+    print("|---|---|---|---|---|---|---|---|---|---|" + ("---|" if spec else ""))
     for cell in results["cells"]:
         for name, b in cell["by"].items():
             if main_only and "@" in name:
                 continue
             print("| %d | %g | %s | %s | %.2f (%.2f + %.2f) | %.2f | %.5f | %.2f | %.2f | %.2f |" % (
                 cell["threads"], cell["budget_s"], name, b["spp"], b["wall_s"], b["startup_s"], b["render_s"],
-                b["cpu_s"], b["rmse"], b["rmse_ratio"], b["rmse_time_scaled_ratio"], b["rmse_cpu_scaled_ratio"]))
+                b["cpu_s"], b["rmse"], b["rmse_ratio"], b["rmse_time_scaled_ratio"], b["rmse_cpu_scaled_ratio"])
+                + (" %.2f |" % b["rmse_time_scaled_no_table_ratio"] if spec else ""))
+        if cell.get("nullpath_table_s") is not None:
+            print("|  |  | (nullpath table optimisation %.2f s, inside its start-up + render) |  |  |  |  |  |  |  |  |"
+                  % cell["nullpath_table_s"])
 
 
 def report(path, main_only):

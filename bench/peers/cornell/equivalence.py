@@ -11,6 +11,13 @@ the seeds, and compare:
 
   python equivalence.py [--res 128] [--spp 64] [--seeds 16] [--variant llvm_ad_rgb] [--threads 2]
   python equivalence.py --from-reference     # the same statistics from the reference's chunks
+  python equivalence.py --spectral [...]     # nullpath --spectral vs Mitsuba llvm_ad_spectral
+  python equivalence.py --spectral --from-reference   # equal_time.py --spectral's reference chunks
+
+--spectral adds `--spectral` to nullpath's command ($NULLPATH_ARGS is appended too), makes the default
+Mitsuba variant llvm_ad_spectral and reads the reference from ref_RES_spectral. It also compares each
+renderer's spectral image mean with its RGB one (per channel ratio spectral / RGB - 1, with standard
+errors), the RGB means from ref_RES/equivalence.json (equivalence.py --from-reference in RGB mode).
 
 Images go to $CORNELL_RUN_DIR/equiv (default /work/peers-run/cornell/equiv); a summary JSON is
 written there and printed.
@@ -84,48 +91,78 @@ def print_summary(r):
                                                         r["block_max_abs_z"]))
 
 
+def spectral_vs_rgb(r, res):
+    """Each renderer's spectral image mean against its RGB one (ref_RES/equivalence.json)."""
+    p = os.path.join(common.RUN_DIR, "ref_%d" % res, "equivalence.json")
+    if not os.path.exists(p):
+        print("(no %s: run equivalence.py --from-reference in RGB mode for the spectral / RGB ratios)" % p)
+        return None
+    with open(p) as f:
+        g = json.load(f)
+    out = {}
+    for who, k in (("nullpath", "a"), ("mitsuba", "b")):
+        s, ss = np.array(r["mean_rgb_" + k]), np.array(r["mean_se_" + k])
+        c, cs = np.array(g["mean_rgb_" + k]), np.array(g["mean_se_" + k])
+        out[who] = {"spectral": s.tolist(), "rgb": c.tolist(), "rgb_from": g[k],
+                    "ratio_minus_1": (s / c - 1).tolist(),
+                    "se": ((s / c) * np.sqrt((ss / s) ** 2 + (cs / c) ** 2)).tolist()}
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--res", type=int, default=128)
     ap.add_argument("--spp", type=int, default=64, help="spp per seed")
     ap.add_argument("--seeds", type=int, default=16)
-    ap.add_argument("--variant", default="llvm_ad_rgb")
+    ap.add_argument("--variant", default=None, help="default llvm_ad_rgb, with --spectral llvm_ad_spectral")
+    ap.add_argument("--spectral", action="store_true", help="nullpath --spectral vs a Mitsuba spectral variant")
     ap.add_argument("--sampler", default="independent")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--from-reference", action="store_true",
                     help="use the chunks equal_time.py rendered for its reference")
     a = ap.parse_args()
+    spectral = a.spectral or "--spectral" in common.NULLPATH_ARGS
+    nargs = ["--spectral"] if spectral else []
+    a.variant = a.variant or ("llvm_ad_spectral" if spectral else "llvm_ad_rgb")
+    sfx = "_spectral" if spectral else ""
 
     if a.from_reference:
-        d = os.path.join(common.RUN_DIR, "ref_%d" % a.res)
+        d = os.path.join(common.RUN_DIR, "ref_%d%s" % (a.res, sfx))
         n_files = sorted(glob.glob(os.path.join(d, "nullpath_seed*.exr")))
         m_files = sorted(glob.glob(os.path.join(d, "mitsuba_seed*.npy")))
         sn = np.stack([common.load_image(p) for p in n_files])
         sm = np.stack([common.load_image(p) for p in m_files])
         with open(os.path.join(d, "chunks.json")) as f:
             meta = json.load(f)
-        r = compare("nullpath %d x %d spp" % (len(n_files), meta["nullpath_spp"]), sn,
-                    "mitsuba %s %d x %d spp" % (meta["mitsuba_variant"], len(m_files), meta["mitsuba_spp"]), sm)
+        r = compare("nullpath%s %d x %d spp" % (" --spectral" if spectral else "", len(n_files), meta["nullpath_spp"]), sn,
+                    "mitsuba %s/%s %d x %d spp" % (meta["mitsuba_variant"], meta.get("mitsuba_sampler", "independent"),
+                                                   len(m_files), meta["mitsuba_spp"]), sm)
         out = os.path.join(d, "equivalence.json")
     else:
-        d = os.path.join(common.RUN_DIR, "equiv")
+        d = os.path.join(common.RUN_DIR, "equiv" + sfx)
         os.makedirs(d, exist_ok=True)
         sn, sm = [], []
         for s in range(a.seeds):
             # alternate the two renderers; seeds 1000+ keep these independent of other runs
             rn = common.run_nullpath(a.spp, a.threads, 1000 + s, a.res,
-                                     os.path.join(d, "n_%d_%d_%d.exr" % (a.res, a.spp, s)))
+                                     os.path.join(d, "n_%d_%d_%d.exr" % (a.res, a.spp, s)), nargs)
             rm = common.run_mitsuba(a.variant, a.sampler, a.spp, a.threads, 1000 + s, a.res,
                                     os.path.join(d, "m_%s_%s_%d_%d_%d.npy" % (a.variant, a.sampler, a.res, a.spp, s)))
             sn.append(common.load_image(rn))
             sm.append(common.load_image(rm))
             print("seed %d: nullpath %.2f s, mitsuba %.2f s" % (s, rn["wall_s"], rm["wall_s"]), flush=True)
-        r = compare("nullpath %d x %d spp" % (a.seeds, a.spp), np.stack(sn),
+        r = compare("nullpath%s %d x %d spp" % (" --spectral" if spectral else "", a.seeds, a.spp), np.stack(sn),
                     "mitsuba %s/%s %d x %d spp" % (a.variant, a.sampler, a.seeds, rm["spp"]), np.stack(sm))
         out = os.path.join(d, "equivalence_%d_%dx%d_%s.json" % (a.res, a.seeds, a.spp, a.variant))
+    if spectral:
+        r["spectral_vs_rgb"] = spectral_vs_rgb(r, a.res)
     with open(out, "w") as f:
         json.dump(r, f, indent=1)
     print_summary(r)
+    if spectral and r["spectral_vs_rgb"]:
+        for who, v in r["spectral_vs_rgb"].items():
+            print("  %s spectral / RGB - 1 (R, G, B): %s" % (who, ", ".join(
+                "%+.2f %% +- %.2f" % (100 * x, 100 * e) for x, e in zip(v["ratio_minus_1"], v["se"]))))
     print("written", out)
 
 

@@ -18,6 +18,14 @@ two renderers read the same numbers. Mapping (see README.md, "Equivalence"):
   with survival min(1, max beta) -> Mitsuba rr_depth 2 (survival min(0.95, max beta); the 0.95 cap
   never binds here: every albedo is <= 0.78).
 
+Spectral variants (scalar_spectral, llvm_ad_spectral) take the same dict: an `rgb` reflectance
+becomes an SRGBReflectanceSpectrum (Jakob & Hanika 2019 sigmoid polynomial from Mitsuba's table),
+and an `rgb` emitter radiance becomes a D65Spectrum (area.cpp reads it with texture_d65): scale =
+2 max(rgb), the sigmoid spectrum of rgb / scale, times scale, times CIE D65 -- an illuminant, as
+nullpath's --spectral (pbrt-v4's RGBIlluminantSpectrum). hdrfilm with pixel_format rgb integrates
+the sampled wavelengths to XYZ and writes linear sRGB (Rec. 709), as nullpath's spectral film.
+MI_RESULT records the emitter's radiance plugin ("emitter_radiance") to show which one was used.
+
 Usage (worker; the harness calls it as a subprocess so that startup/JIT is part of the wall time):
   python mi_cornell.py --variant llvm_ad_rgb --spp 64 --threads 1 --sampler independent \
       --res 128 --seed 0 --out /tmp/mi.npy [--exr /tmp/mi.exr] [--xml scene.xml]
@@ -270,6 +278,8 @@ def main():
     arr = np.array(img, dtype=np.float32)  # forces evaluation of the kernel
     t_render = time.perf_counter()
     used_threads = dr.thread_count()
+    ems = scene.emitters()
+    emitter_radiance = str(ems[0]).split("radiance = ", 1)[1].split("[", 1)[0].strip() if ems else None
     # Bitmap.write deadlocks with a pool of one thread (drjit 1.5.0): restore the pool first.
     dr.set_thread_count(default_threads)
     if a.out:
@@ -280,7 +290,7 @@ def main():
         "renderer": "mitsuba", "variant": a.variant, "sampler": a.sampler, "spp": int(spp),
         "spp_requested": a.spp, "threads": used_threads, "seed": a.seed,
         "width": desc["width"], "height": desc["height"], "max_depth": desc["max_depth"] + 1,
-        "rr_depth": a.rr_depth,
+        "rr_depth": a.rr_depth, "emitter_radiance": emitter_radiance,
         "import_s": t_import - T_START, "load_s": t_load - t_import, "render_s": t_render - t_load,
         "mean_rgb": [float(x) for x in arr.reshape(-1, 3).mean(0)],
     }))

@@ -115,7 +115,10 @@ pub(super) fn radiance(
         let arrival = match propagator.trace(world, region, leave(p, ng, ng_local, direction), direction) {
             RayEnd::Hit(a) => a,
             RayEnd::Escaped { region, direction, energy, .. } if background.sky(region) => {
-                return radiance + beta * shift(energy) * world.sky(region).radiance(direction);
+                // At the whole ratio to the camera, its brightness divided out as `beta` holds it.
+                let g = frequency / energy;
+                let sky = world.sky(region).seen::<Rgb>(direction, (g, g), &()) / frequency.powi(4) as f32;
+                return radiance + beta * sky;
             }
             RayEnd::Escaped { .. } => return radiance,
             RayEnd::Captured | RayEnd::Failed => return radiance,

@@ -13,8 +13,9 @@
 //! Photons carry RGB power. A blackbody's photons (a lamp's, an accretion disk's gas) carry its
 //! temperature and their frequency instead of a colour, and are coloured where a visible point
 //! gathers them, at the whole frequency ratio from the emitter to the camera (see `trace`), so
-//! gravity and motion shift their colour as the path tracer's; a star field's stars are carried
-//! at their colours at rest, shifted in brightness only.
+//! gravity and motion shift their colour as the path tracer's. Camera paths see a star field's
+//! stars at the shifted temperature too; sky photons carry starlight at its colours at rest,
+//! shifted in brightness only.
 //!
 //! Determinism: camera paths draw from the stream of (seed, pixel, iteration); photons are
 //! traced in fixed chunks, each with the stream of (seed, chunk, iteration), and what they

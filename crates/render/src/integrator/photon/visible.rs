@@ -10,7 +10,7 @@ use super::super::path::{leave, segment_end, shift, SegmentEnd};
 use super::super::stats::PathStats;
 use super::background::{self, Background, Vertex};
 use crate::color::Rgb;
-use crate::emission::{Seen, Shift};
+use crate::emission::{Seen, Shift, Shown};
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::Propagator;
@@ -76,15 +76,21 @@ impl CameraPass<'_> {
         let mut depth = 0;
         loop {
             stats.rays += 1;
+            // The sky is seen at the whole ratio to the camera (a star field's blackbodies in the
+            // colour of g T), its brightness g⁴ divided out as `beta` holds it.
+            let so_far = Shift { gravity: frequency, motion: 1.0, shown: Shown::default() };
             let arrival = match segment_end::<Rgb>(
                 self.world,
                 self.propagator.trace(self.world, region, origin, direction),
-                Shift::NONE,
+                so_far,
                 &(),
                 stats,
             ) {
                 SegmentEnd::Surface(a) => a,
-                SegmentEnd::Sky(sky) => return CameraSample { emitted: emitted + beta * sky, visible: None },
+                SegmentEnd::Sky(sky) => {
+                    let sky = sky / frequency.powi(4) as f32;
+                    return CameraSample { emitted: emitted + beta * sky, visible: None };
+                }
             };
             beta *= shift(arrival.energy);
             frequency /= arrival.energy;
