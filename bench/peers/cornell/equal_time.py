@@ -212,8 +212,8 @@ def sampler_study(R, res, spps, seeds, threads, force=False):
 
 def print_study(st):
     spps = st["spps"]
-    print("RMSE at equal spp (Mitsuba llvm_ad_rgb, %d threads; mean MSE of %d seeds; [a-b]: interpolated "
-          "log-log between the valid counts a and b) and render ms per spp" % (st["threads"], st["seeds"]))
+    print("RMSE at equal spp (Mitsuba %s, %d threads; mean MSE of %d seeds; [a-b]: interpolated "
+          "log-log between the valid counts a and b) and render ms per spp" % (MODE["llvm"], st["threads"], st["seeds"]))
     print("| sampler | " + " | ".join("%d spp" % s for s in spps) + " | geometric mean | ms/spp |")
     print("|---" * (len(spps) + 3) + "|")
     for n in mi_cornell.SAMPLERS + ["nullpath-sobol"]:
@@ -356,10 +356,10 @@ def main():
     R = build_reference(a.res, nc, ns, mc, ms, a.ref_threads, a.ref_mitsuba_sampler)
     if a.reference_only:
         return
-    print("== Mitsuba samplers", flush=True)
     if a.no_study:
         st = {"best": None}
     else:
+        print("== Mitsuba samplers", flush=True)
         st = sampler_study(R, a.res, [int(x) for x in a.study_spp.split(",")], a.study_seeds, 2,
                            force=a.redo_study)
         print_study(st)
@@ -482,7 +482,8 @@ def summarize_cell(cell):
         for k in ("rmse", "rmse_time_scaled", "rmse_cpu_scaled"):
             b[k + "_ratio"] = b[k] / max(base[k], 1e-30)
         if tab is not None:
-            b["rmse_time_scaled_no_table_ratio"] = b["rmse_time_scaled"] / max(base["rmse_time_scaled_no_table"], 1e-30)
+            own = b["rmse_time_scaled_no_table"] if label == "nullpath" else b["rmse_time_scaled"]
+            b["rmse_time_scaled_no_table_ratio"] = own / max(base["rmse_time_scaled_no_table"], 1e-30)
     cell["by"] = by
     return cell
 
@@ -504,8 +505,8 @@ def print_table(results, main_only=False):
                 b["cpu_s"], b["rmse"], b["rmse_ratio"], b["rmse_time_scaled_ratio"], b["rmse_cpu_scaled_ratio"])
                 + (" %.2f |" % b["rmse_time_scaled_no_table_ratio"] if spec else ""))
         if cell.get("nullpath_table_s") is not None:
-            print("|  |  | (nullpath table optimisation %.2f s, inside its start-up + render) |  |  |  |  |  |  |  |  |"
-                  % cell["nullpath_table_s"])
+            print("| %d | %g | (nullpath's table optimisation: %.2f s of its wall) | | | | | | | | |"
+                  % (cell["threads"], cell["budget_s"], cell["nullpath_table_s"]))
 
 
 def report(path, main_only):

@@ -64,6 +64,7 @@ def compare(name_a, sa, name_b, sb, block=8):
         "mean_rgb_a": mean_a.tolist(), "mean_rgb_b": mean_b.tolist(),
         "mean_se_a": se_a.tolist(), "mean_se_b": se_b.tolist(),
         "mean_rel_diff": rel.tolist(), "mean_z": z_mean.tolist(),
+        "mean_rel_diff_se": ((mean_a / mean_b) * np.sqrt((se_a / mean_a) ** 2 + (se_b / mean_b) ** 2)).tolist(),
         "all_mean_rel_diff": float(mean_a.sum() / mean_b.sum() - 1),
         "pixel_z_mean": float(z[ok].mean()), "pixel_z_rms": float(np.sqrt((z[ok] ** 2).mean())),
         "pixel_frac_abs_z_gt_4": float((np.abs(z[ok]) > 4).mean()),
@@ -79,9 +80,9 @@ def compare(name_a, sa, name_b, sb, block=8):
 def print_summary(r):
     print("%s vs %s" % (r["a"], r["b"]))
     for c, ch in enumerate("RGB"):
-        print("  %s mean %.6f +- %.6f  vs  %.6f +- %.6f   rel diff %+.2e  z %+.2f" % (
+        print("  %s mean %.6f +- %.6f  vs  %.6f +- %.6f   rel diff %+.2e +- %.1e  z %+.2f" % (
             ch, r["mean_rgb_a"][c], r["mean_se_a"][c], r["mean_rgb_b"][c], r["mean_se_b"][c],
-            r["mean_rel_diff"][c], r["mean_z"][c]))
+            r["mean_rel_diff"][c], r["mean_rel_diff_se"][c], r["mean_z"][c]))
     print("  per pixel z: mean %+.3f rms %.3f  |z|>4: %.4f%%  max |z| %.2f at %s (%d values)" % (
         r["pixel_z_mean"], r["pixel_z_rms"], 100 * r["pixel_frac_abs_z_gt_4"], r["pixel_max_abs_z"],
         r["pixel_worst"], r["pixels_compared"]))
