@@ -226,6 +226,12 @@ def pinhole_json(n, half, dist, incl):
 
 # ------------------------------------------------------------------ kerrz --
 
+def save_maps(folder, **maps):
+    """Each per-pixel map as NAME.npy in `folder` (what compare_disk.py reads)."""
+    for name, values in maps.items():
+        np.save(os.path.join(folder, name + ".npy"), values)
+
+
 def kerrz_worker(a):
     """Runs inside kerrz's venv: trace the common grid with kerrz's Python
     API and write g, r to the given folder."""
@@ -389,11 +395,7 @@ def run_kerrz(a, out, rin):
         os.remove(os.path.join(kdir, f))
 
     ipt = g ** 4 * pt_flux(r, a.spin) / math.pi
-    np.save(os.path.join(kdir, "g.npy"), g)
-    np.save(os.path.join(kdir, "r_emit.npy"), r)
-    np.save(os.path.join(kdir, "I_pt.npy"), ipt)
-    np.save(os.path.join(kdir, "alpha.npy"), alpha)
-    np.save(os.path.join(kdir, "beta.npy"), beta)
+    save_maps(kdir, g=g, r_emit=r, I_pt=ipt, alpha=alpha, beta=beta)
     info.update({
         "image_plane": image_plane_json(n, half),
         "observer": {
@@ -622,11 +624,7 @@ def run_gyoto(a, out, rin):
                   "photon_energy_static_observer_last_pixel": eloc}
         except ImportError as e:
             ex = {"skipped": "gyoto python module not importable: %s" % e}
-    np.save(os.path.join(gdir, "g.npy"), g)
-    np.save(os.path.join(gdir, "I_pt.npy"), ipt)
-    np.save(os.path.join(gdir, "r_emit.npy"), r)
-    np.save(os.path.join(gdir, "alpha.npy"), alpha)
-    np.save(os.path.join(gdir, "beta.npy"), beta)
+    save_maps(gdir, g=g, I_pt=ipt, r_emit=r, alpha=alpha, beta=beta)
     info.update({
         "image_plane": image_plane_json(n, half),
         "pixel_mapping_exact_check": ex,

@@ -87,7 +87,8 @@ fn white_furnace_converges_to_the_analytic_radiance() {
         for kind in [IntegratorKind::Path, IntegratorKind::BruteForce] {
             let m = furnace(kind, spectral);
             // L = 0.25 / (1 − 0.75) = 1 (in spectral rendering, D65 at Y = 1: RGB 1); 4096 paths
-            // averaged, relative standard error ≈ 0.5 % (and a little more for the wavelengths).
+            // averaged, whose noise (more in spectral rendering, whose wavelengths add colour
+            // noise) stays well inside the tolerance.
             for c in m.to_array() {
                 assert!((c - 1.0).abs() < 0.02, "{kind:?}, spectral {spectral}: mean radiance {m}");
             }

@@ -40,13 +40,7 @@ impl BlackbodyLight {
 
     /// The linear Rec. 709 radiance seen with frequency ratio `g`: the blackbody at `gT`.
     pub fn seen(&self, g: f64) -> Rgb {
-        self.shown((g, g), &())
-    }
-
-    /// The radiance seen with its colour shifted by one ratio and its brightness by another
-    /// ([`super::Shift::shown`]), in the colours `C` at `lambda`.
-    pub fn shown<C: Colour>(&self, ratios: (f64, f64), lambda: &C::Lambda) -> C {
-        C::blackbody(self.temperature, self.scale, ratios, lambda)
+        Rgb::blackbody(self.temperature, self.scale, (g, g), &())
     }
 }
 
