@@ -1,8 +1,9 @@
 //! Light sampling by aimed rays is unbiased in every curved spacetime it serves: in a small lit
 //! room around a spinning hole, and around the mouth of a wormhole, the path integrator (light
 //! points joined by rays aimed with Newton's method, MIS with BSDF sampling) and brute force
-//! agree within their noise, over the whole image and pixel by pixel; around a Schwarzschild
-//! hole, the aimed rays agree with Schwarzschild's own connector.
+//! agree within their noise, over the whole image and pixel by pixel; around a charged hole too;
+//! around a Schwarzschild hole, the aimed rays agree with Schwarzschild's own connector, and
+//! beside a wormhole rays aimed in their plane agree with rays aimed in 4-D.
 
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
@@ -91,6 +92,23 @@ fn aimed_light_sampling_agrees_with_brute_force_beside_a_wormhole() {
         let brute = replicas(&scene, IntegratorKind::BruteForce, 64, 0..REPLICAS);
         assert_agree(&aimed, &brute, 0.03, &format!("wormhole room, {region} region"));
     }
+}
+
+#[test]
+fn aimed_light_sampling_agrees_with_brute_force_around_a_charged_hole() {
+    let scene = room("[spacetime]\ntype = \"reissner-nordstrom\"\nmass = 0.25\ncharge = 0.2");
+    let aimed = replicas(&scene, IntegratorKind::Path, 8, 0..REPLICAS);
+    let brute = replicas(&scene, IntegratorKind::BruteForce, 64, 0..REPLICAS);
+    assert_agree(&aimed, &brute, 0.03, "charged-hole room");
+}
+
+#[test]
+fn rays_aimed_in_their_plane_agree_with_rays_aimed_in_four_dimensions() {
+    let mut scene = room("[spacetime]\ntype = \"ellis\"\nthroat = 0.5");
+    let in_plane = replicas(&scene, IntegratorKind::Path, 8, 0..REPLICAS);
+    scene.settings.connector = Connector::Aimed;
+    let four_d = replicas(&scene, IntegratorKind::Path, 8, REPLICAS..2 * REPLICAS);
+    assert_agree(&in_plane, &four_d, 0.03, "wormhole room, in-plane vs 4-D aims");
 }
 
 #[test]

@@ -86,6 +86,9 @@ pub struct Propagator {
     no_turning_beyond: Option<f64>,
     /// The spacetime's light connector, where it has one and rays are traced by chords.
     connector: Option<Connector>,
+    /// Whether light is aimed in the ray's plane where the spacetime is static and spherically
+    /// symmetric ([`spacetime::geodesic::plane_aim`]), rather than in 4-D.
+    aims_in_plane: bool,
     /// The 4-D tracer's settings; its steps move at most half the distance to the centre.
     trace: TraceSettings,
     /// The in-plane tracer's: its steps sweep at most a radian of azimuth (the Taylor series'
@@ -140,6 +143,7 @@ impl Propagator {
             flat,
             no_turning_beyond,
             connector,
+            aims_in_plane: true,
             trace,
             plane_trace,
             epsilon,

@@ -23,10 +23,11 @@ pub enum IntegratorKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Connector {
     /// The spacetime's own connector where it has one (Schwarzschild), else rays aimed by
-    /// Newton's method.
+    /// Newton's method: in the ray's plane where the spacetime is static and spherically
+    /// symmetric, in 4-D elsewhere.
     Auto,
-    /// Rays aimed by Newton's method in every curved spacetime: to check a spacetime's own
-    /// connector against the generic one.
+    /// Rays aimed by Newton's method in 4-D in every curved spacetime: to check a spacetime's
+    /// own connector, and the in-plane aim, against the generic one.
     Aimed,
 }
 

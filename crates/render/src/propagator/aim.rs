@@ -1,10 +1,13 @@
-//! Light rays aimed between two points of any curved spacetime ([`spacetime::geodesic::aim`]),
-//! in the renderer's world and local frames: the generic light connector.
+//! Light rays aimed between two points of any curved spacetime, in the renderer's world and
+//! local frames: the generic light connector. Static, spherically symmetric spacetimes aim in
+//! the ray's plane, one unknown ([`spacetime::geodesic::plane_aim`]); every other one in 4-D,
+//! two unknowns with the ray bundle ([`spacetime::geodesic::aim`]).
 
 use super::Propagator;
 use crate::geometry::Vec3;
 use spacetime::geodesic::aim::{aim, AimSettings};
 use spacetime::geodesic::plane::PlaneMetric;
+use spacetime::geodesic::plane_aim::{plane_aim, PlaneAimSettings};
 use spacetime::geodesic::{Integrator, TraceSettings};
 use spacetime::metric::{LocalFrame, Metric, Tracers};
 use spacetime::{Region, Tetrad};
@@ -19,6 +22,11 @@ const MAX_SHOTS: u32 = 12;
 /// distance from the centre, and a shot across a scene errs by a few 10⁻⁴ of its radius at most,
 /// well inside the 64 ε a traced aim may land from its point; the density errs by ~10⁻⁵.
 const AIM_RTOL: f64 = 1e-5;
+
+/// Relative tolerance of an in-plane aim's shots: tighter than [`AIM_RTOL`], since a shot there
+/// costs a few steps of a 4-component system (the ray and its Jacobi field) and its error
+/// enters the density directly.
+const PLANE_AIM_RTOL: f64 = 1e-8;
 
 /// The step cap of an aim's shots, as a fraction of the distance to the centre: loose, since no
 /// chord of theirs is tested against the scene: error control, not the cap, sets their steps.
@@ -45,10 +53,11 @@ impl Propagator {
         !self.flat && self.connector.is_none() && matches!(self.intersection, crate::settings::Intersection::Chord)
     }
 
-    /// Connects light by the generic aim in every curved spacetime, the spacetime's own
-    /// connector set aside (to compare the two).
+    /// Connects light by the generic 4-D aim in every curved spacetime, the spacetime's own
+    /// connector and the in-plane aim set aside (to compare them with it).
     pub fn with_generic_connector(mut self) -> Self {
         self.connector = None;
+        self.aims_in_plane = false;
         self
     }
 
@@ -57,6 +66,19 @@ impl Propagator {
     /// it finds none (or in flat space, where shadow rays are straight).
     pub fn aim(&self, region: Region, from: Vec3, to: Vec3) -> Option<Aimed> {
         self.spacetime.choose_tracer(AimRay { propagator: self, region, from, to })
+    }
+
+    fn aim_in_plane<M: PlaneMetric>(&self, metric: &M, from: Vec3, to: Vec3) -> Option<Aimed> {
+        let settings = PlaneAimSettings { rtol: PLANE_AIM_RTOL, tolerance: self.epsilon };
+        let found = plane_aim(metric, from.to_array(), to.to_array(), &settings)?;
+        // A spherically symmetric spacetime's world points and local frames are the in-plane
+        // tracer's own (no chart rotation; the static frame with world axes).
+        Some(Aimed {
+            start: Vec3::from_array(found.start),
+            end: Vec3::from_array(found.end),
+            end_tangent: Vec3::from_array(found.end_tangent),
+            solid_angle_per_area: found.solid_angle_per_area,
+        })
     }
 
     fn aim_four_d<M: Metric>(&self, metric: &M, region: Region, from: Vec3, to: Vec3) -> Option<Aimed> {
@@ -104,7 +126,7 @@ impl Propagator {
     }
 }
 
-/// An aim, handed to the tracer the spacetime chooses: every curved one is aimed in 4-D.
+/// An aim, handed to the tracer the spacetime chooses.
 struct AimRay<'a> {
     propagator: &'a Propagator,
     region: Region,
@@ -120,7 +142,10 @@ impl Tracers for AimRay<'_> {
     }
 
     fn in_plane<M: PlaneMetric>(self, metric: &M) -> Option<Aimed> {
-        self.four_d(metric)
+        if !self.propagator.aims_in_plane {
+            return self.four_d(metric);
+        }
+        self.propagator.aim_in_plane(metric, self.from, self.to)
     }
 
     fn four_d<M: Metric>(self, metric: &M) -> Option<Aimed> {

@@ -4,7 +4,8 @@
 //! [`plane`] integrates spherically symmetric spacetimes in the ray's own plane (exactly,
 //! cheaper, with no poles). Both hand every accepted step to the caller, who tests its chord
 //! against a scene and may stop the ray. [`connect`] finds the ray between two given points
-//! of Schwarzschild spacetime and its bundle density; [`aim`] does so for any metric, with the
+//! of Schwarzschild spacetime and its bundle density; [`plane_aim`] for any static, spherically
+//! symmetric one in the ray's plane; [`aim`] does so for any metric, with the
 //! ray [`bundle`].
 //!
 //! [`Metric`]: crate::metric::Metric
@@ -17,6 +18,7 @@ pub mod dopri5;
 mod hamiltonian;
 mod interpolant;
 pub mod plane;
+pub mod plane_aim;
 pub mod rk4;
 mod start_table;
 pub mod tangent_triangle;

@@ -1,6 +1,7 @@
 //! Direct light in any curved spacetime without a connector of its own: the ray from the
 //! shading point to a point sampled on a light is aimed by Newton's method on its start
-//! direction ([`Propagator::aim`], `spacetime::geodesic::aim`), and its density in solid angle
+//! direction ([`Propagator::aim`]: `spacetime::geodesic::plane_aim` in static, spherically
+//! symmetric spacetimes, `spacetime::geodesic::aim` in others), and its density in solid angle
 //! at the shading point follows from the light's area density through the ray bundle:
 //!
 //! ```text

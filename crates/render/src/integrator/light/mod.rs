@@ -8,7 +8,7 @@
 //! - [`straight`]: straight shadow rays (flat space);
 //! - [`ways`]: the spacetime's own connector, each way round a Schwarzschild hole;
 //! - [`aimed`]: rays aimed by Newton's method with their bundle density, in any other curved
-//!   spacetime (Kerr, charged holes, wormholes).
+//!   spacetime (in the ray's plane around wormholes and charged holes, in 4-D around Kerr).
 //!
 //! Each strategy's density is a deterministic function of the shading point and the light
 //! point, so MIS weights of BSDF-sampled hits can be evaluated exactly (Veach 1997, ch. 9); a
