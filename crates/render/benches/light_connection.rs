@@ -63,7 +63,9 @@ fn connections(c: &mut Criterion) {
     });
     for (name, p) in [("schwarzschild_in_plane", &own), ("schwarzschild_generic", &generic), ("kerr_generic", &kerr)] {
         group.bench_function(name, |b| {
-            b.iter(|| pairs.iter().filter_map(|&(x, y)| p.aim(Region::Upper, black_box(x), black_box(y))).count())
+            b.iter(|| {
+                pairs.iter().filter_map(|&(x, y)| p.aim(Region::Upper, black_box(x), black_box(y), Way::Short)).count()
+            })
         });
     }
     group.finish();

@@ -378,7 +378,7 @@ impl Propagator {
             }
             Fate::Escaped { direction } | Fate::Traversed { direction } => {
                 let traversed = matches!(t.fate, Fate::Traversed { .. });
-                let region = if traversed { other(region) } else { region };
+                let region = if traversed { region.other() } else { region };
                 self.beyond(world, region, last.at, Vec3::from_array(direction), traversed, lapse0)
             }
             Fate::Captured => RayEnd::Captured,
@@ -733,13 +733,6 @@ struct ChordHit {
     chord: Ray,
     t: f64,
     theta: f64,
-}
-
-fn other(region: Region) -> Region {
-    match region {
-        Region::Upper => Region::Lower,
-        Region::Lower => Region::Upper,
-    }
 }
 
 /// The local direction of a ray arriving at `hit` (local normal `ng_local`), made to agree with

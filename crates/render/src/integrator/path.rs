@@ -96,7 +96,7 @@ impl<'a> PathIntegrator<'a> {
         let mut eta_scale = 1.0f64;
         let mut shift = Shift::at_camera(doppler, self.shown);
         let (mut region, mut origin, mut direction) = (region, origin, direction);
-        let mut bounce = Bounce { pdf: 0.0, specular: true, from: origin, direction };
+        let mut bounce = Bounce { pdf: 0.0, specular: true, from: origin, region, direction };
         let mut depth = 0;
         loop {
             stats.rays += 1;
@@ -154,7 +154,8 @@ impl<'a> PathIntegrator<'a> {
                 beta = beta / rr_beta as f32;
             }
             direction = frame.to_world(sample.wi);
-            bounce = Bounce { pdf: sample.pdf, specular: sample.is_delta, from: hit.p, direction };
+            bounce =
+                Bounce { pdf: sample.pdf, specular: sample.is_delta, from: hit.p, region: arrival.region, direction };
             origin = leave(hit.p, hit.ng, ng, direction);
             region = arrival.region;
         }

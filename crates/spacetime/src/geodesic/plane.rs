@@ -107,13 +107,6 @@ fn region_sign(region: Region) -> f64 {
     }
 }
 
-fn other(region: Region) -> Region {
-    match region {
-        Region::Upper => Region::Lower,
-        Region::Lower => Region::Upper,
-    }
-}
-
 impl PlaneStart {
     /// The backward-traced ray that leaves a static observer at world `position` of `region`
     /// along the unit `direction` measured in that observer's frame (axes aligned with the
@@ -759,7 +752,7 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
             if let Some(ut) = throat {
                 let (_, du) = t.u_du();
                 let seg = t.segment;
-                (t.segment, t.w) = Segment::starting(seg.e1, seg.e2, other(seg.region), t.phi, ut, -du, seg.split);
+                (t.segment, t.w) = Segment::starting(seg.e1, seg.e2, seg.region.other(), t.phi, ut, -du, seg.split);
                 t.dw = t.derivative();
             }
         }
@@ -808,7 +801,7 @@ fn trace_radial<M: PlaneMetric + ?Sized>(
             return finish(Fate::Stopped, steps);
         }
         let exit = scale3(&normalize3(&from), -throat);
-        let stopped = go(other(region), exit, settings.escape_radius - throat, &mut steps);
+        let stopped = go(region.other(), exit, settings.escape_radius - throat, &mut steps);
         return finish(if stopped { Fate::Stopped } else { Fate::Traversed { direction } }, steps);
     }
     // Flat space: straight through the centre and out.

@@ -47,6 +47,16 @@ pub enum Region {
     Lower,
 }
 
+impl Region {
+    /// The region on the other side of the throat.
+    pub fn other(self) -> Region {
+        match self {
+            Region::Upper => Region::Lower,
+            Region::Lower => Region::Upper,
+        }
+    }
+}
+
 /// A position and direction expressed in a region's flat world coordinates (the Cartesian frame a
 /// scene is modelled in), as opposed to the chart the geodesic is integrated in.
 #[derive(Clone, Copy, Debug, PartialEq)]

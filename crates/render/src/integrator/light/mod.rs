@@ -67,8 +67,9 @@ pub(super) struct Shading<'b, C: Colour> {
 pub(super) struct Bounce {
     pub pdf: f64,
     pub specular: bool,
-    /// The surface point it left (before the offset that starts the next ray).
+    /// The surface point it left (before the offset that starts the next ray), and its region.
     pub from: Vec3,
+    pub region: spacetime::Region,
     /// The direction it left in, in the local frame there.
     pub direction: Vec3,
 }

@@ -8,6 +8,7 @@ use crate::integrator::stats::PathStats;
 use crate::propagator::{Arrival, RayEnd};
 use crate::spectrum::Colour;
 use crate::world::{Emission, World};
+use spacetime::Region;
 
 /// A traced light ray counts as reaching its light point when it hits the light within this
 /// many chord tolerances ε of it (the chord test places hits to within ~ε of the curve, and a
@@ -42,25 +43,57 @@ impl LightPoint<'_> {
     }
 }
 
-/// Samples a light in the region of `at` (`u_choice` picks the light, `u_point` the point).
+/// Which lights a shading point samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Reach {
+    /// Those of its own region.
+    OwnRegion,
+    /// Those of both regions of a wormhole, the other's reached through the throat.
+    BothRegions,
+}
+
+/// The probability that a shading point of region `from` samples a light of region `to`: with
+/// [`Reach::BothRegions`], each region with lights is chosen with probability ½ (where only one
+/// has lights, that one always). Light through the throat lights much of the other side (the sun
+/// of one region shining into a room of the other), and MIS with BSDF sampling keeps the cost of
+/// an even split small where it does not.
+fn region_probability(world: &World, from: Region, to: Region, reach: Reach) -> f64 {
+    let lit = |region: Region| world.light_count(region) > 0;
+    match reach {
+        Reach::OwnRegion => f64::from(u8::from(to == from)),
+        Reach::BothRegions if lit(from) && lit(from.other()) => 0.5,
+        Reach::BothRegions => f64::from(u8::from(lit(to))),
+    }
+}
+
+/// Samples a light for the shading point of `at`, in its region or as `reach` says
+/// (`u_choice` picks the region and the light, `u_point` the point).
 pub(super) fn sample_point<'w>(
     world: &'w World,
     at: &Arrival,
+    reach: Reach,
     u_choice: f64,
     u_point: [f64; 2],
 ) -> Option<LightPoint<'w>> {
-    let choice = world.choose_light(at.region, u_choice)?;
-    let light = world.object(at.region, choice.object);
+    let own = region_probability(world, at.region, at.region, reach);
+    let (region, p_region, u_light) = if u_choice < own {
+        (at.region, own, u_choice / own)
+    } else {
+        (at.region.other(), 1.0 - own, (u_choice - own) / (1.0 - own))
+    };
+    let choice = world.choose_light(region, u_light)?;
+    let light = world.object(region, choice.object);
     let emission = light.emission.as_ref()?;
     let (point, normal) = light.shape.sample_area(u_point);
-    let (probability, area) = (choice.probability, light.shape.area());
-    Some(LightPoint { object: choice.object, region: at.region, point, normal, emission, probability, area })
+    let (probability, area) = (p_region * choice.probability, light.shape.area());
+    Some(LightPoint { object: choice.object, region, point, normal, emission, probability, area })
 }
 
-/// The probability of choosing the emitter `arrival` reached, and its world area: `None` where
-/// the emitter is not sampled.
-pub(super) fn choice(world: &World, arrival: &Arrival) -> Option<(f64, f64)> {
-    let probability = world.light_probability(arrival.region, arrival.object);
+/// The probability with which [`sample_point`] at a shading point of region `from` chooses the
+/// emitter `arrival` reached, and its world area: `None` where the emitter is not sampled.
+pub(super) fn choice(world: &World, from: Region, reach: Reach, arrival: &Arrival) -> Option<(f64, f64)> {
+    let probability = region_probability(world, from, arrival.region, reach)
+        * world.light_probability(arrival.region, arrival.object);
     (probability > 0.0).then(|| (probability, world.object(arrival.region, arrival.object).shape.area()))
 }
 
@@ -80,14 +113,16 @@ pub(super) fn traced_arrival(
     at: &Arrival,
     ng_local: Vec3,
     wi: Vec3,
-    (object, point): (usize, Vec3),
+    light: &LightPoint<'_>,
     stats: &mut PathStats,
 ) -> Option<f64> {
     let origin = leave(at.hit.p, at.hit.ng, ng_local, wi);
     stats.rays += 1;
+    let tolerance = ARRIVAL_TOLERANCE * lit.propagator.epsilon();
     match lit.propagator.trace(lit.world, at.region, origin, wi) {
         RayEnd::Hit(a)
-            if a.object == object && (a.hit.p - point).length() <= ARRIVAL_TOLERANCE * lit.propagator.epsilon() =>
+            if (a.region, a.object) == (light.region, light.object)
+                && (a.hit.p - light.point).length() <= tolerance =>
         {
             Some(a.energy)
         }

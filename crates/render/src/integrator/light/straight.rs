@@ -1,6 +1,6 @@
 //! Direct light in flat space: straight shadow rays to points sampled on the lights.
 
-use super::point::{choice, sample_point};
+use super::point::{choice, sample_point, Reach};
 use super::{contribution, Lit, Shading};
 use crate::geometry::Ray;
 use crate::integrator::stats::PathStats;
@@ -18,7 +18,7 @@ pub(super) fn direct<C: Colour>(
     stats: &mut PathStats,
 ) -> C {
     let (u_choice, u_point) = (sampler.next_f64(), sampler.next_2d());
-    let Some(light) = sample_point(lit.world, at, u_choice, u_point) else { return C::ZERO };
+    let Some(light) = sample_point(lit.world, at, Reach::OwnRegion, u_choice, u_point) else { return C::ZERO };
     let to_light = light.point - at.hit.p;
     let dist2 = to_light.length_squared();
     let wi = to_light / dist2.sqrt();
@@ -43,6 +43,6 @@ pub(super) fn direct<C: Colour>(
 /// (local geometric normal `ng`).
 pub(super) fn emitter_pdf(lit: Lit<'_>, arrival: &Arrival, ng: crate::geometry::Vec3) -> Option<f64> {
     let cos = ng.dot(arrival.direction).abs();
-    let (probability, area) = choice(lit.world, arrival)?;
+    let (probability, area) = choice(lit.world, arrival.region, Reach::OwnRegion, arrival)?;
     (cos > 0.0).then(|| probability * arrival.distance * arrival.distance / (cos * area))
 }

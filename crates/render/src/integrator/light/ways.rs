@@ -34,7 +34,7 @@
 //!
 //! Other curved spacetimes aim their light rays ([`super::aimed`]).
 
-use super::point::{choice, sample_point, solid_angle_density, traced_arrival, LightPoint};
+use super::point::{choice, sample_point, solid_angle_density, traced_arrival, LightPoint, Reach};
 use super::{contribution, Lit, Shading};
 use crate::geometry::Vec3;
 use crate::integrator::stats::PathStats;
@@ -82,7 +82,6 @@ pub(super) struct Candidate<'w> {
     normal_local: Vec3,
     /// Density of `wi` in solid angle at the shading point.
     pub pdf: f64,
-    object: usize,
     point: Vec3,
     connection: Connection,
     /// Points along the connection, in the caller's scratch.
@@ -99,7 +98,7 @@ pub(super) fn direct<C: Colour>(
     stats: &mut PathStats,
 ) -> C {
     let (u_choice, u_point, u_way) = (sampler.next_f64(), sampler.next_2d(), sampler.next_f64());
-    let Some(point) = sample_point(lit.world, at, u_choice, u_point) else {
+    let Some(point) = sample_point(lit.world, at, Reach::OwnRegion, u_choice, u_point) else {
         return C::ZERO;
     };
     let (mut sum, mut waypoints) = (C::ZERO, Waypoints::default());
@@ -147,17 +146,7 @@ fn join<'w>(
         return None;
     }
     let wi = Vec3::from_array(connection.start);
-    Some(Candidate {
-        wi,
-        light,
-        leaving,
-        normal_local,
-        pdf,
-        object: light.object,
-        point: light.point,
-        connection,
-        waypoints,
-    })
+    Some(Candidate { wi, light, leaving, normal_local, pdf, point: light.point, connection, waypoints })
 }
 
 impl Candidate<'_> {
@@ -199,7 +188,7 @@ impl Candidate<'_> {
 
     /// [`Candidate::arrives`] by tracing the connection against the scene.
     fn traced(&self, lit: Lit<'_>, at: &Arrival, ng_local: Vec3, stats: &mut PathStats) -> Option<f64> {
-        traced_arrival(lit, at, ng_local, self.wi, (self.object, self.point), stats)
+        traced_arrival(lit, at, ng_local, self.wi, self.light, stats)
     }
 }
 
@@ -210,7 +199,7 @@ pub(super) fn emitter_pdf(lit: Lit<'_>, from: Vec3, arrival: &Arrival) -> Option
     // Each way round, the ray is unique (monotone shooting, see `connect`): a ray that went less
     // than once round is exactly the one `connect` finds, that way round, between its ends.
     let way = Way::of_sweep(arrival.swept?)?;
-    let (probability, area) = choice(lit.world, arrival)?;
+    let (probability, area) = choice(lit.world, arrival.region, Reach::OwnRegion, arrival)?;
     let connection = lit.propagator.connect(from, arrival.hit.p, way, None, &mut Waypoints::default())?;
     let pdf =
         way_probability(way, from, arrival.hit.p) * connection_density(probability / area, arrival.hit.ng, &connection);
@@ -250,7 +239,7 @@ mod tests {
         let RayEnd::Hit(at) = propagator.trace(world, Region::Upper, eye, (target - eye).normalize()) else {
             return None;
         };
-        let point = sample_point(world, &at, uniform(), [uniform(), uniform()])?;
+        let point = sample_point(world, &at, Reach::OwnRegion, uniform(), [uniform(), uniform()])?;
         Some((at, point))
     }
 
@@ -324,7 +313,7 @@ mod tests {
                 let RayEnd::Hit(arrival) = propagator.trace(&world, Region::Upper, origin, candidate.wi) else {
                     continue;
                 };
-                if arrival.object != candidate.object {
+                if arrival.object != candidate.light.object {
                     continue;
                 }
                 let pdf = emitter_pdf(Lit { world: &world, propagator: &propagator }, at.hit.p, &arrival).unwrap();
