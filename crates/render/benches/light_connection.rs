@@ -64,7 +64,12 @@ fn connections(c: &mut Criterion) {
     for (name, p) in [("schwarzschild_in_plane", &own), ("schwarzschild_generic", &generic), ("kerr_generic", &kerr)] {
         group.bench_function(name, |b| {
             b.iter(|| {
-                pairs.iter().filter_map(|&(x, y)| p.aim(Region::Upper, black_box(x), black_box(y), Way::Short)).count()
+                pairs
+                    .iter()
+                    .filter_map(|&(x, y)| {
+                        p.aim((Region::Upper, black_box(x)), (Region::Upper, black_box(y)), Way::Short)
+                    })
+                    .count()
             })
         });
     }
