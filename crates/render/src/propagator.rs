@@ -636,13 +636,20 @@ impl Propagator {
         region: Region,
     ) -> RayEnd {
         let mut arrival: Option<(ChordHit, State)> = None;
+        let place = |x: &Vector4, theta: f64| Knot {
+            theta,
+            at: self.to_world(Vec3::from_array(chart.point(x))),
+            tangent: None,
+        };
+        // The step's ends are its start and end states themselves; a step starts where the
+        // previous one ended, so its first knot is that one's last.
+        let mut last = place(&start.x, 0.0);
         let trace = HamiltonianTracer::new(traced, start, self.trace).run(|step: &HamiltonianStep| {
-            let knot = |theta: f64| {
-                let at = chart.point(&step.at(theta).x);
-                Knot { theta, at: self.to_world(Vec3::from_array(at)), tangent: None }
-            };
+            let knot = |theta: f64| place(&step.position_at(theta), theta);
             let curved = CurvedStep { knot: &knot, motion: None, axis: None, leaves_origin: false };
-            match self.curved(world, region, &curved, knot(0.0), knot(1.0)) {
+            let (from, to) = (Knot { theta: 0.0, ..last }, place(&step.end.x, 1.0));
+            last = to;
+            match self.curved(world, region, &curved, from, to) {
                 Some(found) => {
                     arrival = Some((found, step.at(found.theta)));
                     Visit::Stop

@@ -54,15 +54,17 @@ pub struct Attempt<const N: usize> {
     k: [[f64; N]; 7],
 }
 
-#[inline]
-fn combine<const N: usize>(y: &[f64; N], h: f64, terms: &[(f64, &[f64; N])]) -> [f64; N] {
-    std::array::from_fn(|i| {
-        let mut s = 0.0;
-        for (c, k) in terms {
-            s += c * k[i];
+/// `y + h Σ c k` over the `T` terms `(c, k)`. Always inlined, with the count of terms a
+/// constant: taken out of line, the loop over a slice of terms ran one component at a time.
+#[inline(always)]
+fn combine<const N: usize, const T: usize>(y: &[f64; N], h: f64, terms: [(f64, &[f64; N]); T]) -> [f64; N] {
+    let mut s = [0.0; N];
+    for (c, k) in terms {
+        for (s, k) in s.iter_mut().zip(k) {
+            *s += c * k;
         }
-        y[i] + h * s
-    })
+    }
+    std::array::from_fn(|i| y[i] + h * s[i])
 }
 
 /// Takes one Dormand–Prince step of size `h` (which may be negative).
@@ -74,12 +76,12 @@ pub fn attempt<const N: usize>(
     k1: &[f64; N],
     h: f64,
 ) -> Attempt<N> {
-    let k2 = f(t0 + C2 * h, &combine(y0, h, &[(A21, k1)]));
-    let k3 = f(t0 + C3 * h, &combine(y0, h, &[(A31, k1), (A32, &k2)]));
-    let k4 = f(t0 + C4 * h, &combine(y0, h, &[(A41, k1), (A42, &k2), (A43, &k3)]));
-    let k5 = f(t0 + C5 * h, &combine(y0, h, &[(A51, k1), (A52, &k2), (A53, &k3), (A54, &k4)]));
-    let k6 = f(t0 + h, &combine(y0, h, &[(A61, k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)]));
-    let y1 = combine(y0, h, &[(A71, k1), (A73, &k3), (A74, &k4), (A75, &k5), (A76, &k6)]);
+    let k2 = f(t0 + C2 * h, &combine(y0, h, [(A21, k1)]));
+    let k3 = f(t0 + C3 * h, &combine(y0, h, [(A31, k1), (A32, &k2)]));
+    let k4 = f(t0 + C4 * h, &combine(y0, h, [(A41, k1), (A42, &k2), (A43, &k3)]));
+    let k5 = f(t0 + C5 * h, &combine(y0, h, [(A51, k1), (A52, &k2), (A53, &k3), (A54, &k4)]));
+    let k6 = f(t0 + h, &combine(y0, h, [(A61, k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)]));
+    let y1 = combine(y0, h, [(A71, k1), (A73, &k3), (A74, &k4), (A75, &k5), (A76, &k6)]);
     let k7 = f(t0 + h, &y1);
     let error =
         std::array::from_fn(|i| h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]));

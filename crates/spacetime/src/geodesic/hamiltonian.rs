@@ -59,6 +59,13 @@ impl<const N: usize> HamiltonianStep<N> {
         unpack(&self.interpolant.dense(theta))
     }
 
+    /// Ray position `x^μ` at fraction `θ ∈ [0, 1]` of the step: the part of
+    /// [`HamiltonianStep::at`] that placing a point needs, at half its cost.
+    #[inline]
+    pub fn position_at(&self, theta: f64) -> Vector4 {
+        self.interpolant.dense_head(theta)
+    }
+
     /// The whole flow's state at fraction `θ` of the step.
     pub fn flow_at(&self, theta: f64) -> [f64; N] {
         self.interpolant.dense(theta)
@@ -71,7 +78,9 @@ pub struct HamiltonianTracer<'m, M: Metric + ?Sized, const N: usize = 8, F: Flow
     settings: TraceSettings,
     y: [f64; N],
     dy: [f64; N],
-    h: f64,
+    /// The next step to attempt: RK4's fixed affine step, or the adaptive integrator's proposal
+    /// in units of the step scale where the step starts ([`HamiltonianTracer::step_scale`]).
+    next: f64,
     lambda: f64,
     steps: u32,
     flow: std::marker::PhantomData<F>,
@@ -88,17 +97,15 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
     /// The tracer of flow `F` from `y` (its first eight components the ray's start).
     pub fn of_flow(metric: &'m M, y: [f64; N], settings: TraceSettings) -> Self {
         let dy = Self::rhs(metric, &y);
-        let h0 = match settings.integrator {
+        let next = match settings.integrator {
             Integrator::Rk4 { step } => step,
-            // A cautious first step; error control grows it within a few steps.
-            Integrator::Adaptive { .. } => f64::INFINITY,
+            // The first attempt is the longest step allowed (one step scale where nothing caps
+            // it): error control shrinks a rejected attempt by its own estimate at once, where
+            // growing from a cautious guess took several steps.
+            Integrator::Adaptive { .. } => settings.max_step_fraction.min(1.0),
         };
         let flow = std::marker::PhantomData;
-        let mut tracer = Self { metric, settings, y, dy, h: h0, lambda: 0.0, steps: 0, flow };
-        if matches!(settings.integrator, Integrator::Adaptive { .. }) {
-            tracer.h = 0.01 * tracer.step_cap();
-        }
-        tracer
+        Self { metric, settings, y, dy, next, lambda: 0.0, steps: 0, flow }
     }
 
     #[inline]
@@ -124,12 +131,13 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
         [self.dy[0], self.dy[1], self.dy[2], self.dy[3]]
     }
 
-    /// Largest affine step: the coordinate displacement stays below `max_step_fraction` of the
-    /// distance from the centre, so rays stride far from masses and creep near them.
-    fn step_cap(&self) -> f64 {
+    /// The affine step whose coordinate displacement is the distance from the centre (at least
+    /// the metric's length scale): the length over which a ray's path changes, so the steps that
+    /// error control allows grow and shrink with it.
+    fn step_scale(&self) -> f64 {
         let r = (self.y[1] * self.y[1] + self.y[2] * self.y[2] + self.y[3] * self.y[3]).sqrt();
         let v = (self.dy[1] * self.dy[1] + self.dy[2] * self.dy[2] + self.dy[3] * self.dy[3]).sqrt();
-        self.settings.max_step_fraction * r.max(self.metric.length_scale()) / v
+        r.max(self.metric.length_scale()) / v
     }
 
     /// Scaled error norm of an attempt: rotation-invariant blocks for position, time and
@@ -150,8 +158,16 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
             return Err(Failure::OutOfSteps);
         }
         let f = |_t: f64, y: &[f64; N]| Self::rhs(self.metric, y);
-        let cap = self.step_cap().min(h_limit);
-        let mut h = self.h.min(cap);
+        // The largest step moves the ray by `max_step_fraction` of its distance from the centre,
+        // so rays stride far from masses and creep near them.
+        let scale = self.step_scale();
+        let cap = (self.settings.max_step_fraction * scale).min(h_limit);
+        let mut h = match self.settings.integrator {
+            Integrator::Rk4 { .. } => self.next,
+            Integrator::Adaptive { .. } => self.next * scale,
+        }
+        .min(cap);
+        let mut rejected = false;
         let interpolant = loop {
             let (step, error) = Interpolant::step(self.settings.integrator, &f, self.lambda, &self.y, &self.dy, h);
             let (Some(error), Integrator::Adaptive { rtol }) = (error, self.settings.integrator) else {
@@ -159,11 +175,17 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
             };
             let err = self.error_norm(&self.y, &step.y1(), &error, rtol);
             if err <= 1.0 {
-                self.h = h * dopri5::step_factor(err);
+                // The proposal is kept relative to the step scale: a ray falling towards the
+                // centre needs shorter steps at every step, and one climbing out longer ones,
+                // which a proposal kept in affine length learns only by rejected attempts (or
+                // not at all). Right after a rejection it does not grow (Hairer et al. II.4).
+                let factor = dopri5::step_factor(err);
+                self.next = h * if rejected { factor.min(1.0) } else { factor } / scale;
                 break step;
             }
+            rejected = true;
             h *= if err.is_finite() { dopri5::step_factor(err).min(1.0) } else { 0.2 };
-            if h <= 1e-14 * cap || !h.is_finite() {
+            if h <= 1e-14 * cap.min(scale) || !h.is_finite() {
                 return Err(Failure::StepUnderflow);
             }
         };

@@ -75,12 +75,13 @@ impl<const N: usize> Interpolant<N> {
         }
     }
 
-    /// Component `i` of [`Interpolant::dense`]: placing a point needs only the position part.
+    /// The first `M` components of [`Interpolant::dense`]: placing a point needs only the
+    /// position part.
     #[inline]
-    pub fn dense_component(&self, theta: f64, i: usize) -> f64 {
+    pub fn dense_head<const M: usize>(&self, theta: f64) -> [f64; M] {
         match self {
-            Interpolant::Dopri(a) => a.dense_component(theta, i),
-            Interpolant::Hermite { .. } => self.dense(theta)[i],
+            Interpolant::Dopri(a) => std::array::from_fn(|i| a.dense_component(theta, i)),
+            Interpolant::Hermite { y0, d0, y1, d1, h } => rk4::hermite_head(y0, d0, y1, d1, *h, theta),
         }
     }
 }

@@ -236,7 +236,7 @@ impl PlaneAttempt {
     #[inline]
     fn dense_u(&self, theta: f64) -> f64 {
         match self {
-            PlaneAttempt::Runge(step) => step.dense_component(theta, 0),
+            PlaneAttempt::Runge(step) => step.dense_head::<1>(theta)[0],
             PlaneAttempt::Taylor(series) => series.u(theta),
         }
     }

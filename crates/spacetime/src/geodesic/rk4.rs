@@ -27,6 +27,19 @@ pub fn hermite<const N: usize>(
     h: f64,
     theta: f64,
 ) -> [f64; N] {
+    hermite_head(y0, d0, y1, d1, h, theta)
+}
+
+/// The first `M` components of [`hermite`].
+#[inline]
+pub fn hermite_head<const N: usize, const M: usize>(
+    y0: &[f64; N],
+    d0: &[f64; N],
+    y1: &[f64; N],
+    d1: &[f64; N],
+    h: f64,
+    theta: f64,
+) -> [f64; M] {
     let t2 = theta * theta;
     let t3 = t2 * theta;
     let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;

@@ -10,14 +10,14 @@
 //! inside the horizon, where rays are stopped.
 
 use super::capabilities::{tetrad_frame, tetrad_lapse, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
-use super::kerr_schild::{KerrSchild, KerrSchildPoint};
+use super::kerr_schild::{hamilton_rhs, KerrSchild, KerrSchildPoint};
 use super::spin_twin::SpinTwin;
 use super::user::Scalar;
 use super::{Metric, Region};
 use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
 use crate::observer::Tetrad;
-use crate::tensor::Vector4;
+use crate::tensor::{Covector4, Vector4};
 
 /// Kerr spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,24 +40,63 @@ pub(super) fn spheroidal<D: Scalar>(a: f64, x: D, y: D, z: D) -> (D, D, [D; 3]) 
     (r, r2, k)
 }
 
+/// What the Kerr–Schild fields of a hole of Kerr's family (mass `m`, spin `a`, charge `q`:
+/// `f = r²(2Mr − Q²)/(r⁴ + a²z²)`) and Hamilton's equations there share, in closed form: this
+/// runs at every step of every ray, and dual numbers cost about twice as much. The spheroidal
+/// radius solves `r⁴ − (ρ² − a²) r² − a²z² = 0`, so `∂r/∂xⁱ = (xⁱ r² + a² z δⁱ_z) / (2 r s)` with
+/// `2s = 2r² − ρ² + a²`; `k` and `f` follow by the chain rule, `∂_i f = g ∂_i r − h δ_iz`.
+struct Spheroid {
+    a: f64,
+    /// The spatial point `(x, y, z)`.
+    x: [f64; 3],
+    r: f64,
+    inv_r: f64,
+    /// `1/(r² + a²)`.
+    inv_w: f64,
+    k: [f64; 3],
+    /// `∂r/∂xⁱ`.
+    dr: [f64; 3],
+    f: f64,
+    g: f64,
+    h: f64,
+}
+
+impl Spheroid {
+    #[inline]
+    fn at(m: f64, a: f64, q: f64, x: &Vector4) -> Self {
+        let (px, py, z) = (x[1], x[2], x[3]);
+        let a2 = a * a;
+        let half = 0.5 * (px * px + py * py + z * z - a2);
+        let s = (half * half + z * z * a2).sqrt();
+        let r2 = half + s;
+        let r = r2.sqrt();
+        let w = r2 + a2;
+        let inv_w = 1.0 / w;
+        let inv_r = 1.0 / r;
+        let k = [(r * px - a * py) * inv_w, (r * py + a * px) * inv_w, z * inv_r];
+        let scale = 0.5 / (r * s);
+        let dr = [px * r2 * scale, py * r2 * scale, z * w * scale];
+        let inv_den = 1.0 / (r2 * r2 + z * z * a2);
+        let f = r2 * (2.0 * m * r - q * q) * inv_den;
+        // ∂f = (∂num − f ∂den) / den with ∂num = r (6Mr − 2Q²) ∂r, ∂den = 4r³ ∂r + 2a²z δ_z.
+        let g = (r * (6.0 * m * r - 2.0 * q * q) - 4.0 * f * r * r2) * inv_den;
+        let h = 2.0 * f * a2 * z * inv_den;
+        Self { a, x: [px, py, z], r, inv_r, inv_w, k, dr, f, g, h }
+    }
+
+    /// `∂_i f`.
+    #[inline]
+    fn df(&self) -> [f64; 3] {
+        let (g, dr) = (self.g, &self.dr);
+        [g * dr[0], g * dr[1], g * dr[2] - self.h]
+    }
+}
+
 /// The Kerr–Schild fields at `x` of the hole of Kerr's family with mass `m`, spin `a` and
-/// charge `q` (`f = r²(2Mr − Q²)/(r⁴ + a²z²)`), with their derivatives in closed form: this runs
-/// at every step of every ray, and dual numbers cost about twice as much. The spheroidal radius
-/// solves `r⁴ − (ρ² − a²) r² − a²z² = 0`, so `∂r/∂xⁱ = (xⁱ r² + a² z δⁱ_z) / (2 r s)` with
-/// `2s = 2r² − ρ² + a²`; `k` and `f` follow by the chain rule.
+/// charge `q`, with their derivatives ([`Spheroid`]).
 pub(super) fn spheroidal_fields(m: f64, a: f64, q: f64, x: &Vector4) -> KerrSchildPoint {
-    let (px, py, z) = (x[1], x[2], x[3]);
-    let a2 = a * a;
-    let half = 0.5 * (px * px + py * py + z * z - a2);
-    let s = (half * half + z * z * a2).sqrt();
-    let r2 = half + s;
-    let r = r2.sqrt();
-    let w = r2 + a2;
-    let inv_w = 1.0 / w;
-    let k = [(r * px - a * py) * inv_w, (r * py + a * px) * inv_w, z / r];
-    let scale = 0.5 / (r * s);
-    let dr = [px * r2 * scale, py * r2 * scale, z * w * scale];
-    let inv_r = 1.0 / r;
+    let point = Spheroid::at(m, a, q, x);
+    let Spheroid { a, x: [px, py, _], r, inv_r, inv_w, k, dr, f, .. } = point;
     let dk = std::array::from_fn(|i| {
         let along = |axis: usize| if i == axis { 1.0 } else { 0.0 };
         [
@@ -66,15 +105,21 @@ pub(super) fn spheroidal_fields(m: f64, a: f64, q: f64, x: &Vector4) -> KerrSchi
             inv_r * (along(2) - k[2] * dr[i]),
         ]
     });
-    let num = r2 * (2.0 * m * r - q * q);
-    let inv_den = 1.0 / (r2 * r2 + z * z * a2);
-    let f = num * inv_den;
-    let dnum_dr = r * (6.0 * m * r - 2.0 * q * q);
-    let df = std::array::from_fn(|i| {
-        let dden = 4.0 * r * r2 * dr[i] + if i == 2 { 2.0 * a2 * z } else { 0.0 };
-        (dnum_dr * dr[i] - f * dden) * inv_den
-    });
-    KerrSchildPoint { f, k, df, dk }
+    KerrSchildPoint { f, k, df: point.df(), dk }
+}
+
+/// Hamilton's equations at `x` about the hole of Kerr's family with mass `m`, spin `a` and
+/// charge `q`: [`KerrSchildPoint::geodesic_rhs`] without forming the nine derivatives of `k`,
+/// whose contraction with the momentum is, by [`spheroidal_fields`]' `∂_i k_j`,
+/// `∂_i k_j p_j = c ∂_i r + e_i` with `c = ((x − 2r k_x) p_x + (y − 2r k_y) p_y)/(r² + a²)
+/// − k_z p_z / r` and `e = ((r p_x + a p_y)/(r² + a²), (r p_y − a p_x)/(r² + a²), p_z / r)`.
+pub(super) fn spheroidal_rhs(m: f64, a: f64, q: f64, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
+    let point = Spheroid::at(m, a, q, x);
+    let Spheroid { a, x: [px, py, _], r, inv_r, inv_w, k, dr, f, .. } = point;
+    let c = inv_w * ((px - 2.0 * r * k[0]) * p[1] + (py - 2.0 * r * k[1]) * p[2]) - inv_r * k[2] * p[3];
+    let e = [inv_w * (r * p[1] + a * p[2]), inv_w * (r * p[2] - a * p[1]), inv_r * p[3]];
+    let dq = std::array::from_fn(|i| -(c * dr[i] + e[i]));
+    hamilton_rhs(f, &k, &point.df(), &dq, p)
 }
 
 impl Kerr {
@@ -91,6 +136,11 @@ impl Kerr {
 impl KerrSchild for Kerr {
     fn fields(&self, x: &Vector4) -> KerrSchildPoint {
         spheroidal_fields(self.mass, self.spin, 0.0, x)
+    }
+
+    #[inline]
+    fn hamilton(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
+        spheroidal_rhs(self.mass, self.spin, 0.0, x, p)
     }
 
     fn mass(&self) -> f64 {
@@ -242,6 +292,22 @@ mod tests {
                             d.dk[i][j]
                         );
                     }
+                }
+            }
+        }
+    }
+
+    /// The contracted right-hand side is the one the fields give.
+    #[test]
+    fn closed_form_rhs_matches_the_fields() {
+        let p = [-1.0, 0.3, -0.7, 0.5];
+        for (m, a, q) in [(1.0, 0.0, 0.0), (1.0, 0.9, 0.0), (1.0, -0.99, 0.0), (1.0, 0.6, 0.8)] {
+            for x in [[0.0, 2.0, -3.0, 1.0], [0.0, -1.1, 0.05, -0.02], [0.0, 0.0, 0.0, 2.5], [0.0, 40.0, -7.0, 3.0]] {
+                let ((dx, dp), (ex, ep)) =
+                    (spheroidal_rhs(m, a, q, &x, &p), spheroidal_fields(m, a, q, &x).geodesic_rhs(&p));
+                for i in 0..4 {
+                    assert!((dx[i] - ex[i]).abs() <= 1e-13 * (1.0 + ex[i].abs()), "dx at {x:?}");
+                    assert!((dp[i] - ep[i]).abs() <= 1e-13 * (1.0 + ep[i].abs()), "dp at {x:?}");
                 }
             }
         }

@@ -10,13 +10,13 @@
 
 use super::capabilities::{tetrad_frame, tetrad_lapse};
 use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
-use super::kerr::{spheroidal, spheroidal_fields, spinning_rest};
+use super::kerr::{spheroidal, spheroidal_fields, spheroidal_rhs, spinning_rest};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::spin_twin::SpinTwin;
 use super::Region;
 use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
-use crate::tensor::Vector4;
+use crate::tensor::{Covector4, Vector4};
 
 /// Kerr–Newman spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,6 +35,11 @@ impl KerrNewman {
 impl KerrSchild for KerrNewman {
     fn fields(&self, x: &Vector4) -> KerrSchildPoint {
         spheroidal_fields(self.mass, self.spin, self.charge, x)
+    }
+
+    #[inline]
+    fn hamilton(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
+        spheroidal_rhs(self.mass, self.spin, self.charge, x, p)
     }
 
     fn mass(&self) -> f64 {

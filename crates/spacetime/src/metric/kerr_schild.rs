@@ -53,20 +53,11 @@ impl KerrSchildPoint {
         d
     }
 
-    /// Hamilton's equations in closed form: with `q = l^μ p_μ`,
-    /// `H = ½ η^{μν} p_μ p_ν − ½ f q²`, so `dx^μ = η^{μν} p_ν − f q l^μ` (`l^μ = (−1, −k)`) and
-    /// `dp_i = ½ ∂_i f q² + f q ∂_i q`, `∂_i q = −∂_i k_j p_j`; `dp_t = 0`.
+    /// Hamilton's equations ([`hamilton_rhs`]).
     #[inline]
     pub fn geodesic_rhs(&self, p: &Covector4) -> (Vector4, Covector4) {
-        let q = -p[0] - (self.k[0] * p[1] + self.k[1] * p[2] + self.k[2] * p[3]);
-        let fq = self.f * q;
-        let dx = [-p[0] + fq, p[1] + fq * self.k[0], p[2] + fq * self.k[1], p[3] + fq * self.k[2]];
-        let mut dp = [0.0; 4];
-        for i in 0..3 {
-            let dq = -(self.dk[i][0] * p[1] + self.dk[i][1] * p[2] + self.dk[i][2] * p[3]);
-            dp[i + 1] = 0.5 * self.df[i] * q * q + fq * dq;
-        }
-        (dx, dp)
+        let dq = std::array::from_fn(|i| -(self.dk[i][0] * p[1] + self.dk[i][1] * p[2] + self.dk[i][2] * p[3]));
+        hamilton_rhs(self.f, &self.k, &self.df, &dq, p)
     }
 
     pub fn hamiltonian(&self, p: &Covector4) -> f64 {
@@ -75,11 +66,30 @@ impl KerrSchildPoint {
     }
 }
 
+/// Hamilton's equations in closed form from `f`, `k`, `∂_i f` and `∂_i q`: with `q = l^μ p_μ`,
+/// `H = ½ η^{μν} p_μ p_ν − ½ f q²`, so `dx^μ = η^{μν} p_ν − f q l^μ` (`l^μ = (−1, −k)`) and
+/// `dp_i = ½ ∂_i f q² + f q ∂_i q`, `∂_i q = −∂_i k_j p_j`; `dp_t = 0`.
+#[inline]
+pub(super) fn hamilton_rhs(f: f64, k: &[f64; 3], df: &[f64; 3], dq: &[f64; 3], p: &Covector4) -> (Vector4, Covector4) {
+    let q = -p[0] - (k[0] * p[1] + k[1] * p[2] + k[2] * p[3]);
+    let fq = f * q;
+    let dx = [-p[0] + fq, p[1] + fq * k[0], p[2] + fq * k[1], p[3] + fq * k[2]];
+    let half_q2 = 0.5 * q * q;
+    let dp = [0.0, half_q2 * df[0] + fq * dq[0], half_q2 * df[1] + fq * dq[1], half_q2 * df[2] + fq * dq[2]];
+    (dx, dp)
+}
+
 /// A stationary metric in Kerr–Schild form. Everything [`Metric`] asks for follows from the
 /// fields at a point, the mass and the horizon, so the metrics only provide those.
 pub trait KerrSchild: Send + Sync {
     /// `f`, `k` and their derivatives at `x`.
     fn fields(&self, x: &Vector4) -> KerrSchildPoint;
+    /// Hamilton's equations at `x` ([`KerrSchildPoint::geodesic_rhs`]); a metric whose `∂_i k_j`
+    /// contract with the momentum in closed form may skip forming them.
+    #[inline]
+    fn hamilton(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
+        self.fields(x).geodesic_rhs(p)
+    }
     fn mass(&self) -> f64;
     /// The radial coordinate of the metric (areal for Schwarzschild, spheroidal for Kerr).
     fn radial_coordinate(&self, x: &Vector4) -> f64;
@@ -103,7 +113,7 @@ impl<T: KerrSchild> Metric for T {
 
     #[inline]
     fn geodesic_rhs(&self, x: &Vector4, p: &Covector4) -> (Vector4, Covector4) {
-        self.fields(x).geodesic_rhs(p)
+        self.hamilton(x, p)
     }
 
     fn hamiltonian(&self, x: &Vector4, p: &Covector4) -> f64 {
