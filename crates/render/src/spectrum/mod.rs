@@ -60,7 +60,7 @@ pub trait Spectrum {
 pub(crate) mod test_support {
     use super::{RgbToSpectrumTable, RgbUpsampler};
 
-    /// The optimised table, shared with rendering (optimising it takes about a second).
+    /// The table rendering uses (the shipped one).
     pub fn table() -> &'static RgbToSpectrumTable {
         RgbUpsampler::get().table()
     }
