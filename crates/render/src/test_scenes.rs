@@ -25,7 +25,7 @@ pub fn floor_lamp_board_ball() -> World {
         object(Shape::sphere(Vec3::new(-3.0, -2.0, 3.0), 1.0, &t).unwrap(), None),
     ];
     let black = || Sky::Constant(Rgb::ZERO);
-    let materials = vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.5)) }];
+    let materials = vec![Material::Diffuse { reflectance: Texture::from(Rgb::splat(0.5)) }];
     World::new(materials, (objects, black()), (Vec::new(), black()))
 }
 
@@ -41,7 +41,7 @@ pub fn rectangles(shapes: &[[[f64; 3]; 3]]) -> World {
         })
         .collect();
     let black = || Sky::Constant(Rgb::ZERO);
-    let materials = vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.5)) }];
+    let materials = vec![Material::Diffuse { reflectance: Texture::from(Rgb::splat(0.5)) }];
     World::new(materials, (objects, black()), (Vec::new(), black()))
 }
 

@@ -362,7 +362,7 @@ mod tests {
             emission: Some(Emission::uniform(Rgb::splat(r), false)),
         };
         World::new(
-            vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.5)) }],
+            vec![Material::Diffuse { reflectance: Texture::from(Rgb::splat(0.5)) }],
             (vec![light(0.0, 1.0), light(5.0, 3.0)], Sky::Constant(Rgb::ZERO)),
             (Vec::new(), Sky::Constant(Rgb::ZERO)),
         )

@@ -94,8 +94,8 @@ fn room(spacetime: Spacetime) -> Scene {
         Object { shape: Shape::sphere(Vec3::new(0.6, 0.0, 0.0), 0.6, &t).unwrap(), material: 1, emission: None },
     ];
     let materials = vec![
-        Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.6)) },
-        Material::Dielectric { ior: 1.5, dispersion: None, transmittance: Texture::Constant(Rgb::ONE) },
+        Material::Diffuse { reflectance: Texture::from(Rgb::splat(0.6)) },
+        Material::Dielectric { ior: 1.5, dispersion: None, transmittance: Texture::from(Rgb::ONE) },
     ];
     let camera = Camera::new(Region::Upper, Vec3::new(0.0, 1.0, 5.0), Vec3::ZERO, Vec3::Y, 50.0, 0.0, None).unwrap();
     let settings = RenderSettings { width: 32, height: 32, spp: 8, max_depth: 5, ..RenderSettings::default() };
@@ -128,7 +128,7 @@ fn a_thin_plate_inside_a_long_step_is_hit_by_chords_and_missed_by_sign_changes()
         emission: None,
     };
     let world = World::new(
-        vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::ONE) }],
+        vec![Material::Diffuse { reflectance: Texture::from(Rgb::ONE) }],
         (vec![plate], Sky::Constant(Rgb::ZERO)),
         (Vec::new(), Sky::Constant(Rgb::ZERO)),
     );

@@ -65,7 +65,7 @@ fn block_means(film: &Film, n: u32) -> Vec<f64> {
 }
 
 fn diffuse(a: f32) -> Material {
-    Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(a)) }
+    Material::Diffuse { reflectance: Texture::from(Rgb::splat(a)) }
 }
 
 fn sphere(centre: Vec3, radius: f64) -> Shape {

@@ -54,7 +54,7 @@ fn mean(film: &Film) -> Rgb {
 }
 
 fn diffuse(a: f32) -> Material {
-    Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(a)) }
+    Material::Diffuse { reflectance: Texture::from(Rgb::splat(a)) }
 }
 
 /// Inside a closed sphere whose wall has albedo `a` and emits `Le`, every direction sees
@@ -100,7 +100,7 @@ fn white_furnace_converges_to_the_analytic_radiance() {
 fn glass_in_a_uniform_sky_conserves_energy() {
     let ball =
         Object { shape: Shape::sphere(Vec3::ZERO, 1.0, &Transform::identity()).unwrap(), material: 0, emission: None };
-    let glass = Material::Dielectric { ior: 1.5, dispersion: None, transmittance: Texture::Constant(Rgb::ONE) };
+    let glass = Material::Dielectric { ior: 1.5, dispersion: None, transmittance: Texture::from(Rgb::ONE) };
     let sc = scene(
         vec![ball],
         vec![glass],
@@ -127,7 +127,7 @@ fn dispersing_glass_in_a_uniform_sky_conserves_energy() {
     let glass = Material::Dielectric {
         ior: 1.7,
         dispersion: Some(render::material::Dispersion::from_abbe(1.7, 20.0).unwrap()),
-        transmittance: Texture::Constant(Rgb::ONE),
+        transmittance: Texture::from(Rgb::ONE),
     };
     let mut s = settings(16, 64, 64);
     s.spectral = true;
@@ -155,7 +155,7 @@ fn a_mirror_shows_the_sky_reflected() {
         material: 0,
         emission: None,
     };
-    let chrome = Material::Mirror { reflectance: Texture::Constant(Rgb::ONE) };
+    let chrome = Material::Mirror { reflectance: Texture::from(Rgb::ONE) };
     let (pos, at) = (Vec3::new(0.5, 2.0, 1.0), Vec3::new(-0.2, 0.0, -3.0));
     let flip = Vec3::new(1.0, -1.0, 1.0);
     let reflected = Camera::new(Region::Upper, pos * flip, at * flip, -Vec3::Y, 50.0, 0.0, None).unwrap();
@@ -195,7 +195,7 @@ fn the_image_does_not_depend_on_the_thread_count() {
     let flint = Material::Dielectric {
         ior: 1.5,
         dispersion: render::material::Dispersion::from_abbe(1.5, 30.0),
-        transmittance: Texture::Constant(Rgb::ONE),
+        transmittance: Texture::from(Rgb::ONE),
     };
     let materials = vec![diffuse(0.6), flint];
     let sc = scene(

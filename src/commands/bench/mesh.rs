@@ -76,7 +76,7 @@ fn resident_bytes() -> Option<u64> {
 pub fn build(room: Scene) -> Result<Built, String> {
     let before = resident_bytes();
     let mut materials = room.world.materials.clone();
-    materials.push(Material::Diffuse { reflectance: Texture::Constant(Rgb::new(0.55, 0.45, 0.35)) });
+    materials.push(Material::Diffuse { reflectance: Texture::from(Rgb::new(0.55, 0.45, 0.35)) });
     let stone = materials.len() - 1;
     let shapes = TriangleMesh::shapes(&Arc::new(rock(Vec3::new(-3.2, -3.1, -2.0), 0.9, 5.0)));
     let small = rock(Vec3::ZERO, 0.35, 9.0);

@@ -20,7 +20,7 @@ pub use shift::{Shift, Shown};
 use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
 use crate::propagator::Propagator;
-use crate::spectrum::Colour;
+use crate::spectrum::{Colour, LiftedIlluminant};
 use spacetime::Region;
 use std::sync::Arc;
 
@@ -38,8 +38,8 @@ pub struct Emission {
 /// What an emitter emits.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Radiance {
-    /// A linear Rec. 709 colour.
-    Rgb(Rgb),
+    /// A linear Rec. 709 colour (`Rgb(colour.into())`), its spectrum lifted once.
+    Rgb(LiftedIlluminant),
     /// Planck's law at a temperature.
     Blackbody(BlackbodyLight),
     /// A thin accretion disk's gas, hotter inwards and orbiting the hole.
@@ -60,7 +60,7 @@ pub enum Profile {
 
 /// What leaves an emitter before any shift: a colour, or a blackbody.
 enum Leaving {
-    Rgb(Rgb),
+    Rgb(LiftedIlluminant),
     Blackbody(EmittedBlackbody),
 }
 
@@ -124,7 +124,7 @@ impl Profile {
 impl Emission {
     /// Constant radiance in every direction of the outward side (both if `two_sided`).
     pub fn uniform(radiance: Rgb, two_sided: bool) -> Self {
-        Self { radiance: Radiance::Rgb(radiance), two_sided, profile: Profile::Uniform }
+        Self { radiance: Radiance::Rgb(radiance.into()), two_sided, profile: Profile::Uniform }
     }
 
     /// Whether light leaves the surface with outward normal `ng` in direction `dir`.
@@ -144,7 +144,7 @@ impl Emission {
             return C::ZERO;
         }
         let radiance = match self.leaving(dir, seen) {
-            Leaving::Rgb(rgb) => C::illuminant(rgb, seen.shift.shown(1.0), lambda),
+            Leaving::Rgb(rgb) => C::lifted_illuminant(&rgb, seen.shift.shown(1.0), lambda),
             Leaving::Blackbody(b) => C::blackbody(b.temperature, b.scale, seen.shift.shown(b.doppler), lambda),
         };
         radiance * factor as f32
@@ -190,7 +190,7 @@ impl Emission {
             }
         };
         let at_rest = match &self.radiance {
-            Radiance::Rgb(rgb) => f64::from(luminance(*rgb)),
+            Radiance::Rgb(rgb) => f64::from(luminance(rgb.rgb())),
             Radiance::Blackbody(light) => light.luminance(),
             Radiance::Disk(disk) => disk.mean_luminance(),
         };
@@ -214,7 +214,7 @@ mod tests {
         let at = Seen { region: Region::Upper, point: Vec3::ZERO, shift: Shift::NONE, propagator: &propagator };
         let (inner, outer) = (20f64.to_radians(), 35f64.to_radians());
         let spot = Emission {
-            radiance: Radiance::Rgb(Rgb::splat(2.0)),
+            radiance: Radiance::Rgb(Rgb::splat(2.0).into()),
             two_sided: false,
             profile: Profile::Spot { cos_inner: inner.cos(), cos_outer: outer.cos() },
         };

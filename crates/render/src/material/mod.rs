@@ -226,7 +226,10 @@ impl Material {
     /// Colours are clamped to `[0, 1]` so that no texture can make a surface create energy. A
     /// dispersing glass refracts at the hero wavelength, which alone is carried on from here.
     pub fn resolve<C: Colour>(&self, uv: [f64; 2], p: Vec3, lambda: &mut C::Lambda) -> Bsdf<C> {
-        let albedo = |t: &Texture, lambda: &C::Lambda| C::reflectance(t.eval(uv, p).clamp(Rgb::ZERO, Rgb::ONE), lambda);
+        let albedo = |t: &Texture, lambda: &C::Lambda| match t {
+            Texture::Constant(c) => C::lifted_reflectance(c, lambda),
+            _ => C::reflectance(t.eval(uv, p).clamp(Rgb::ZERO, Rgb::ONE), lambda),
+        };
         match self {
             Material::Diffuse { reflectance } => Bsdf::Diffuse { reflectance: albedo(reflectance, lambda) },
             Material::Mirror { reflectance } => Bsdf::Mirror { reflectance: albedo(reflectance, lambda) },

@@ -11,11 +11,14 @@
 //! converge faster than with independent random numbers. The groups are scrambled and shuffled
 //! independently ("padding"), so they are uncorrelated, and each sample on its own is a vector
 //! of independent uniform numbers: estimates stay unbiased whatever a path does with them. A
-//! group costs one four-wide `sobol_burley::sample_4d`.
+//! group is `sobol_burley::sample_4d`'s numbers, bit for bit, computed with byte tables of the
+//! Sobol matrices (see [`SobolBytes`]).
 //!
 //! Everything is keyed by `(seed, pixel, sample)`, never by thread, so images are reproducible.
 
 use super::rng::mix64;
+use sobol_burley::parts::{hash, hash_int4, owen_scramble_int4_rev, owen_scramble_rev, sobol_rev, Int4};
+use std::sync::OnceLock;
 
 /// Samples per pixel that one sequence provides (`sobol_burley`'s limit); later samples continue
 /// in independently scrambled sequences.
@@ -47,7 +50,7 @@ impl Sampler {
     fn refill(&mut self) {
         self.group += 1;
         let seed = mix64(self.key ^ self.group.wrapping_mul(0xd1b54a32d192ed03)) as u32;
-        self.numbers = sobol_burley::sample_4d(self.index, 0, seed);
+        self.numbers = SobolBytes::get().sample_4d(self.index, seed);
         self.used = 0;
     }
 
@@ -72,9 +75,55 @@ impl Sampler {
     }
 }
 
+/// Dimensions 0–3 of the Sobol sequence by bytes of the (bit-reversed) index. A Sobol point is
+/// linear over GF(2) in its index: the XOR of the direction vectors of the index's set bits.
+/// `sobol_burley` loops over those bits (up to 16 of them, as the shuffled index of any sample has
+/// random high bits); the XOR over each byte's bits is tabulated here, so a point is two loads.
+#[derive(Debug)]
+struct SobolBytes {
+    /// Point of bits 24–31 of the reversed index (the index's bits 0–7), one entry per byte value.
+    high: [[u32; 4]; 256],
+    /// Point of bits 16–23 of the reversed index (the index's bits 8–15).
+    low: [[u32; 4]; 256],
+}
+
+impl SobolBytes {
+    /// The tables, built on first use from `sobol_burley`'s own direction vectors.
+    fn get() -> &'static Self {
+        static TABLES: OnceLock<SobolBytes> = OnceLock::new();
+        TABLES.get_or_init(|| {
+            let byte = |shift: u32| {
+                std::array::from_fn(|value| std::array::from_fn(|d| sobol_rev((value as u32) << shift, d as u32)))
+            };
+            Self { high: byte(24), low: byte(16) }
+        })
+    }
+
+    /// `sobol_burley::sample_4d(index, 0, seed)`, bit for bit (the same shuffle of the index and
+    /// Owen scrambling of the point; `index` < 2¹⁶).
+    fn sample_4d(&self, index: u32, seed: u32) -> [f32; 4] {
+        let shuffled_rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c68e4a));
+        let sobol_rev = Int4::from(self.high[(shuffled_rev >> 24) as usize])
+            ^ Int4::from(self.low[(shuffled_rev >> 16 & 0xff) as usize]);
+        let scramble = Int4::from([seed.wrapping_mul(0x9c8f2d3b); 4])
+            ^ Int4::from([0x912f69ba, 0x174f18ab, 0x691e72ca, 0xb40cc1b8]);
+        owen_scramble_int4_rev(sobol_rev, hash_int4(scramble)).reverse_bits().to_f32_norm()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn byte_tables_give_sobol_burleys_numbers() {
+        let tables = SobolBytes::get();
+        for index in 0..SEQUENCE_LENGTH as u32 {
+            for seed in [0, 1, 0x5bd1e995, u32::MAX, index.wrapping_mul(0x9e3779b9)] {
+                assert_eq!(tables.sample_4d(index, seed), sobol_burley::sample_4d(index, 0, seed), "{index} {seed}");
+            }
+        }
+    }
 
     /// The draws of samples `0..n` of one pixel, `draws` 2-D draws each.
     fn points(pixel: u64, n: u64, draws: usize) -> Vec<Vec<[f64; 2]>> {

@@ -10,6 +10,11 @@
 //! - RGB radiance to that times D65, the white of Rec. 709 (pbrt-v4's `RGBIlluminantSpectrum`);
 //! - blackbodies to Planck's law at each wavelength.
 //!
+//! Constant inputs (a constant texture's reflectance, an emitter's RGB radiance) are lifted once,
+//! where the scene is built ([`LiftedReflectance`], [`LiftedIlluminant`]): a path meeting them
+//! evaluates their spectrum at its wavelengths, with no table lookup at each hit, and gets the
+//! same numbers as lifting the colour there.
+//!
 //! **Frequency shifts.** Radiance seen with its colour shifted by the ratio `c = ν_seen/ν_emitted`
 //! and its brightness by `b` ([`crate::emission::Shift::shown`]) is `c⁵ L(cλ) · (b/c)⁴`: with
 //! `c = b = g` that is nature's `g⁵ L(gλ)` (`I_λ λ⁵` is invariant), and a toggle that leaves one
@@ -18,8 +23,8 @@
 //! both modes, being the blackbody at `cT`.
 
 use super::{
-    xyz_to_linear_srgb, Blackbody, BlackbodyColours, RgbUpsampler, SampledSpectrum, SampledWavelengths, Spectrum,
-    N_WAVELENGTHS,
+    xyz_to_linear_srgb, Blackbody, BlackbodyColours, RgbIlluminantSpectrum, RgbUpsampler, SampledSpectrum,
+    SampledWavelengths, SigmoidPolynomial, Spectrum, N_WAVELENGTHS,
 };
 use crate::color::{luminance, Rgb};
 use std::fmt::Debug;
@@ -68,12 +73,19 @@ pub trait Colour:
     /// A reflectance given in linear Rec. 709 RGB, each channel in `[0, 1]`.
     fn reflectance(rgb: Rgb, lambda: &Self::Lambda) -> Self;
 
+    /// A reflectance lifted where the scene was built: `reflectance` of its colour clamped to
+    /// `[0, 1]`.
+    fn lifted_reflectance(reflectance: &LiftedReflectance, lambda: &Self::Lambda) -> Self;
+
     /// A non-negative RGB quantity that is no reflectance (a conductor's η and κ).
     fn unbounded(rgb: Rgb, lambda: &Self::Lambda) -> Self;
 
     /// Radiance given in linear Rec. 709 RGB, seen with its colour shifted by `c` and its
     /// brightness by `b` (`shown = (c, b)`).
     fn illuminant(rgb: Rgb, shown: (f64, f64), lambda: &Self::Lambda) -> Self;
+
+    /// Radiance lifted where the scene was built: `illuminant` of its colour.
+    fn lifted_illuminant(radiance: &LiftedIlluminant, shown: (f64, f64), lambda: &Self::Lambda) -> Self;
 
     /// `scale` times Planck's law at `temperature` kelvin, seen with `shown = (c, b)`.
     fn blackbody(temperature: f64, scale: f64, shown: (f64, f64), lambda: &Self::Lambda) -> Self;
@@ -130,12 +142,20 @@ impl Colour for Rgb {
         rgb
     }
 
+    fn lifted_reflectance(reflectance: &LiftedReflectance, _: &()) -> Self {
+        reflectance.rgb.clamp(Rgb::ZERO, Rgb::ONE)
+    }
+
     fn unbounded(rgb: Rgb, _: &()) -> Self {
         rgb
     }
 
     fn illuminant(rgb: Rgb, (_, brightness): (f64, f64), _: &()) -> Self {
         rgb * brightness.powi(4) as f32
+    }
+
+    fn lifted_illuminant(radiance: &LiftedIlluminant, shown: (f64, f64), lambda: &()) -> Self {
+        Self::illuminant(radiance.rgb, shown, lambda)
     }
 
     fn blackbody(temperature: f64, scale: f64, shown: (f64, f64), _: &()) -> Self {
@@ -187,8 +207,11 @@ impl Colour for SampledSpectrum {
     }
 
     fn reflectance(rgb: Rgb, lambda: &SampledWavelengths) -> Self {
-        let sigmoid = RgbUpsampler::get().albedo(rgb.clamp(Rgb::ZERO, Rgb::ONE).to_array());
-        at_wavelengths(lambda, 1.0, |l| sigmoid.eval(l))
+        Self::lifted_reflectance(&LiftedReflectance::new(rgb), lambda)
+    }
+
+    fn lifted_reflectance(reflectance: &LiftedReflectance, lambda: &SampledWavelengths) -> Self {
+        at_wavelengths(lambda, 1.0, |l| reflectance.spectrum.eval(l))
     }
 
     fn unbounded(rgb: Rgb, lambda: &SampledWavelengths) -> Self {
@@ -197,11 +220,14 @@ impl Colour for SampledSpectrum {
     }
 
     fn illuminant(rgb: Rgb, shown: (f64, f64), lambda: &SampledWavelengths) -> Self {
-        let spectrum = RgbUpsampler::get().illuminant(rgb.to_array());
+        Self::lifted_illuminant(&LiftedIlluminant::new(rgb), shown, lambda)
+    }
+
+    fn lifted_illuminant(radiance: &LiftedIlluminant, shown: (f64, f64), lambda: &SampledWavelengths) -> Self {
         let colour = shown.0;
         // c⁵ L(cλ) (b/c)⁴.
         let scale = colour.powi(5) * brightness_over_colour(shown);
-        at_wavelengths(lambda, scale, |l| spectrum.eval(colour * l))
+        at_wavelengths(lambda, scale, |l| radiance.spectrum.eval(colour * l))
     }
 
     fn blackbody(temperature: f64, scale: f64, shown: (f64, f64), lambda: &SampledWavelengths) -> Self {
@@ -220,6 +246,72 @@ impl Colour for SampledSpectrum {
 
     fn keep_hero(lambda: &mut SampledWavelengths) {
         lambda.terminate_secondary();
+    }
+}
+
+/// A reflectance given in linear Rec. 709 RGB, with the spectrum of its colour clamped to
+/// `[0, 1]` lifted once (see the module documentation).
+#[derive(Clone, Copy, Debug)]
+pub struct LiftedReflectance {
+    rgb: Rgb,
+    spectrum: SigmoidPolynomial,
+}
+
+impl LiftedReflectance {
+    /// `rgb`, kept as given, and the reflectance spectrum of `rgb` clamped to `[0, 1]`.
+    pub fn new(rgb: Rgb) -> Self {
+        Self { rgb, spectrum: RgbUpsampler::get().albedo(rgb.clamp(Rgb::ZERO, Rgb::ONE).to_array()) }
+    }
+
+    /// The colour as given.
+    pub fn rgb(&self) -> Rgb {
+        self.rgb
+    }
+}
+
+/// Equal when the colours are: the spectrum is a function of the colour.
+impl PartialEq for LiftedReflectance {
+    fn eq(&self, other: &Self) -> bool {
+        self.rgb == other.rgb
+    }
+}
+
+impl From<Rgb> for LiftedReflectance {
+    fn from(rgb: Rgb) -> Self {
+        Self::new(rgb)
+    }
+}
+
+/// Radiance given in linear Rec. 709 RGB, with its spectrum ([`RgbUpsampler::illuminant`])
+/// lifted once (see the module documentation).
+#[derive(Clone, Copy, Debug)]
+pub struct LiftedIlluminant {
+    rgb: Rgb,
+    spectrum: RgbIlluminantSpectrum,
+}
+
+impl LiftedIlluminant {
+    /// `rgb` and its spectrum.
+    pub fn new(rgb: Rgb) -> Self {
+        Self { rgb, spectrum: RgbUpsampler::get().illuminant(rgb.to_array()) }
+    }
+
+    /// The colour as given.
+    pub fn rgb(&self) -> Rgb {
+        self.rgb
+    }
+}
+
+/// Equal when the colours are: the spectrum is a function of the colour.
+impl PartialEq for LiftedIlluminant {
+    fn eq(&self, other: &Self) -> bool {
+        self.rgb == other.rgb
+    }
+}
+
+impl From<Rgb> for LiftedIlluminant {
+    fn from(rgb: Rgb) -> Self {
+        Self::new(rgb)
     }
 }
 

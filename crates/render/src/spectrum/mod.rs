@@ -26,7 +26,7 @@ mod xyz;
 pub use blackbody::{Blackbody, NormalizedBlackbody, WIEN_DISPLACEMENT};
 pub use blackbody_colour::BlackbodyColours;
 pub use cie::{cmf, xyz_quadrature};
-pub use colour::Colour;
+pub use colour::{Colour, LiftedIlluminant, LiftedReflectance};
 pub use d65::D65;
 pub use rgb_spectrum::{RgbIlluminantSpectrum, RgbUnboundedSpectrum, RgbUpsampler};
 pub use rgb_table::RgbToSpectrumTable;
@@ -60,7 +60,7 @@ pub trait Spectrum {
 pub(crate) mod test_support {
     use super::{RgbToSpectrumTable, RgbUpsampler};
 
-    /// The optimised table, shared with rendering (optimising it takes about a second).
+    /// The table rendering uses (the shipped one).
     pub fn table() -> &'static RgbToSpectrumTable {
         RgbUpsampler::get().table()
     }

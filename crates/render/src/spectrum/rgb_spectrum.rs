@@ -16,13 +16,11 @@ impl RgbUpsampler {
         Self { table, d65: D65::new() }
     }
 
-    /// The upsampler spectral rendering uses, its table optimised at
-    /// [`RgbToSpectrumTable::DEFAULT_RESOLUTION`] on first use (under a second on two cores)
-    /// and kept: a deterministic function of nothing, like a constant table.
+    /// The upsampler spectral rendering uses, with the [`RgbToSpectrumTable::shipped`] table
+    /// (read on first use, not optimised) and kept.
     pub fn get() -> &'static RgbUpsampler {
         static UPSAMPLER: OnceLock<RgbUpsampler> = OnceLock::new();
-        UPSAMPLER
-            .get_or_init(|| RgbUpsampler::new(RgbToSpectrumTable::optimise(RgbToSpectrumTable::DEFAULT_RESOLUTION)))
+        UPSAMPLER.get_or_init(|| RgbUpsampler::new(RgbToSpectrumTable::shipped()))
     }
 
     /// The table it lifts colours with.

@@ -26,13 +26,14 @@ pub use grid::{GridAxis, GridHighlight};
 use crate::color::Rgb;
 use crate::geometry::Vec3;
 use crate::image_io::ImageData;
+use crate::spectrum::LiftedReflectance;
 use std::sync::Arc;
 
 /// A colour over a surface. See the module documentation and each variant's file.
 #[derive(Clone, Debug)]
 pub enum Texture {
-    /// The same colour everywhere.
-    Constant(Rgb),
+    /// The same colour everywhere, its reflectance spectrum lifted once (`Texture::from` a colour).
+    Constant(LiftedReflectance),
     /// Unit squares of `st` alternate between `a` (the square `[0, 1)²`) and `b`.
     Checker { a: Box<Texture>, b: Box<Texture>, uv_scale: [f64; 2] },
     /// Lines of colour `line` and width `width` every `spacing` along `s` and `t`, over `background`;
@@ -49,7 +50,7 @@ impl Texture {
     #[allow(clippy::only_used_in_recursion, reason = "`p` is part of the interface for solid textures")]
     pub fn eval(&self, uv: [f64; 2], p: Vec3) -> Rgb {
         match self {
-            Texture::Constant(c) => *c,
+            Texture::Constant(c) => c.rgb(),
             Texture::Checker { a, b, uv_scale } => {
                 if checker::is_first(scale(uv, *uv_scale)) {
                     a.eval(uv, p)
@@ -77,6 +78,7 @@ impl Texture {
         };
         match self {
             Texture::Constant(c) => {
+                let c = c.rgb();
                 if c.is_finite() {
                     Ok(())
                 } else {
@@ -105,13 +107,13 @@ impl Texture {
 
     /// A checkerboard of two colours with `squares` squares per unit of `u` and `v`.
     pub fn checker(a: Rgb, b: Rgb, squares: [f64; 2]) -> Self {
-        Texture::Checker { a: Box::new(Texture::Constant(a)), b: Box::new(Texture::Constant(b)), uv_scale: squares }
+        Texture::Checker { a: Box::new(a.into()), b: Box::new(b.into()), uv_scale: squares }
     }
 }
 
 impl From<Rgb> for Texture {
     fn from(c: Rgb) -> Self {
-        Texture::Constant(c)
+        Texture::Constant(c.into())
     }
 }
 

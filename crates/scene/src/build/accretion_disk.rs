@@ -69,7 +69,7 @@ impl Builder<'_> {
         let (inner_world, outer_world) = light.world_radii();
         let shape = Shape::annulus(Vec3::ZERO, normal, inner_world, outer_world, &Transform::identity())
             .map_err(|e| n.err(e.to_string()))?;
-        self.materials.push(Material::Diffuse { reflectance: Texture::Constant(Rgb::ZERO) });
+        self.materials.push(Material::Diffuse { reflectance: Texture::from(Rgb::ZERO) });
         let emission =
             Emission { radiance: Radiance::Disk(Arc::new(light)), two_sided: true, profile: Profile::Uniform };
         Ok(Object { shape, material: self.materials.len() - 1, emission: Some(emission) })

@@ -103,7 +103,7 @@ impl Builder<'_> {
             }
         }
         if !scene.lights.is_empty() {
-            self.materials.push(Material::Diffuse { reflectance: Texture::Constant(Rgb::ZERO) });
+            self.materials.push(Material::Diffuse { reflectance: Texture::from(Rgb::ZERO) });
             let black = self.materials.len() - 1;
             let area = std::f64::consts::PI * POINT_LIGHT_RADIUS * POINT_LIGHT_RADIUS;
             for light in &scene.lights {
@@ -117,7 +117,7 @@ impl Builder<'_> {
                     Some(cone) => {
                         let axis = placement.vector(cone.axis).normalize_or_zero();
                         let profile = Profile::Spot { cos_inner: cone.cos_inner, cos_outer: cone.cos_outer };
-                        let emission = Emission { radiance: Radiance::Rgb(radiance), two_sided: false, profile };
+                        let emission = Emission { radiance: Radiance::Rgb(radiance.into()), two_sided: false, profile };
                         (Shape::disk(centre, axis, POINT_LIGHT_RADIUS, &Transform::IDENTITY), emission)
                     }
                 };

@@ -121,14 +121,14 @@ impl Builder<'_> {
     fn texture_or(&mut self, t: &Table<'_>, key: &str, grey: f32) -> Result<Texture> {
         match t.get(key) {
             Some(n) => self.texture(&n),
-            None => Ok(Texture::Constant(Rgb::splat(grey))),
+            None => Ok(Texture::from(Rgb::splat(grey))),
         }
     }
 
     /// A colour or a texture table, with colours in `[0, 1]`.
     pub(super) fn texture(&mut self, n: &Node<'_>) -> Result<Texture> {
         if !n.is_table() {
-            return albedo(n).map(Texture::Constant);
+            return albedo(n).map(Texture::from);
         }
         let (kind, t) = n.tagged("texture", TEXTURES)?;
         let uv_scale = |default: [f64; 2]| t.or("uv_scale", default, |n| n.pair());

@@ -100,7 +100,7 @@ fn emission(n: &Node<'_>) -> Result<Emission> {
             if t.get("luminance").is_some() {
                 return Err(t.loc("luminance").err("a luminance scales a temperature's blackbody; scale the radiance"));
             }
-            Radiance::Rgb(t.req("radiance", radiance)?)
+            Radiance::Rgb(t.req("radiance", radiance)?.into())
         }
         (None, Some(_)) => {
             let temperature = t.req("temperature", |n| n.f64())?;
@@ -162,7 +162,7 @@ impl Builder<'_> {
     /// The material of objects that name none: diffuse grey 0.5.
     pub(super) fn default_material(&mut self) -> usize {
         *self.default_material.get_or_insert_with(|| {
-            self.materials.push(Material::Diffuse { reflectance: Texture::Constant(Rgb::splat(0.5)) });
+            self.materials.push(Material::Diffuse { reflectance: Texture::from(Rgb::splat(0.5)) });
             self.materials.len() - 1
         })
     }

@@ -121,7 +121,7 @@ fn base_colour(
         return Err(format!("{name}: its baseColorFactor {factor} is not finite"));
     }
     let Some(info) = pbr.base_color_texture() else {
-        return Ok(Texture::Constant(factor));
+        return Ok(Texture::from(factor));
     };
     if info.tex_coord() != 0 {
         warnings.push(format!("{name}: its base colour uses TEXCOORD_{}; TEXCOORD_0 is used", info.tex_coord()));

@@ -193,7 +193,7 @@ mod tests {
             emission: Some(Emission::uniform(Rgb::splat(r), false)),
         };
         let black = || Sky::Constant(Rgb::ZERO);
-        let materials = vec![Material::Diffuse { reflectance: Texture::Constant(Rgb::ONE) }];
+        let materials = vec![Material::Diffuse { reflectance: Texture::from(Rgb::ONE) }];
         let flat = Spacetime::Minkowski(spacetime::Minkowski);
         let propagator = Propagator::new(flat.clone(), 1.0, 1e-7, crate::settings::Intersection::Chord);
         let split = |world: &World, visible| {
