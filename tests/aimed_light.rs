@@ -98,14 +98,15 @@ fn aimed_light_sampling_agrees_with_brute_force_beside_a_wormhole() {
     }
 }
 
-/// The wormhole room of [`room_in`] in the upper region, and a second lamp in the lower region
-/// facing the throat, whose light reaches the room only through it.
-fn rooms_either_side_of_a_throat() -> Scene {
-    let mut text = room_text("[spacetime]\ntype = \"ellis\"\nthroat = 0.5", "upper");
+/// The wormhole room of [`room_in`] in the upper region with its lamp dark, and a lamp in the
+/// lower region facing the throat, whose light reaches the room only through it.
+fn room_lit_through_a_throat() -> Scene {
+    let room = room_text("[spacetime]\ntype = \"ellis\"\nthroat = 0.5", "upper");
+    let mut text = room.replace("emission = { radiance = [5, 5, 5] }", "");
     text.push_str(
         r#"
 [[objects]]
-shape = { type = "rectangle", corner = [-1, 1.2, -1], edge_u = [2, 0, 0], edge_v = [0, 0, 2] }
+shape = { type = "rectangle", corner = [-2, 1.2, -2], edge_u = [4, 0, 0], edge_v = [0, 0, 4] }
 material = "lamp"
 region = "lower"
 emission = { radiance = [3, 6, 9] }
@@ -114,18 +115,20 @@ emission = { radiance = [3, 6, 9] }
     scene::parse(&text, "aimed-light fixture", std::path::Path::new(".")).unwrap()
 }
 
-/// Light sampled through the throat is unbiased, and light sampling still pays with lamps on
-/// both sides: at equal samples brute force, which finds either lamp only by chance, leaves
-/// several times the noise (3.9 measured).
+/// Light aimed through the throat at the other region's lamp is unbiased, and it pays: at
+/// equal samples brute force, which finds that lamp only by chance, leaves more noise (2.3×
+/// measured; rays through the throat's small opening are costly to aim and their images of the
+/// lamp sharp-edged, so the gain is smaller than in one region).
 #[test]
 fn aimed_light_through_a_throat_agrees_with_brute_force() {
-    let scene = rooms_either_side_of_a_throat();
-    let aimed = replicas(&scene, IntegratorKind::Path, 8, 0..REPLICAS);
-    let brute = replicas(&scene, IntegratorKind::BruteForce, 64, 0..REPLICAS);
-    assert_agree(&aimed, &brute, 0.03, "rooms either side of a throat");
-    let brute8 = replicas(&scene, IntegratorKind::BruteForce, 8, 0..REPLICAS);
-    let ratio = spread(&brute8) / spread(&aimed);
-    assert!(ratio > 2.5, "variance ratio brute force ÷ aimed at 8 spp: {ratio}");
+    let scene = room_lit_through_a_throat();
+    let aimed = replicas(&scene, IntegratorKind::Path, 32, 0..REPLICAS);
+    // Brute force finds the lamp only through the throat's small opening: it needs more samples.
+    let brute = replicas(&scene, IntegratorKind::BruteForce, 256, 0..REPLICAS);
+    assert_agree(&aimed, &brute, 0.03, "room lit through a throat");
+    let brute32 = replicas(&scene, IntegratorKind::BruteForce, 32, 0..REPLICAS);
+    let ratio = spread(&brute32) / spread(&aimed);
+    assert!(ratio > 1.5, "variance ratio brute force ÷ aimed at 32 spp: {ratio}");
 }
 
 #[test]

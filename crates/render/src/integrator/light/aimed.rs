@@ -103,10 +103,11 @@ pub(super) fn emitter_pdf(lit: Lit<'_>, bounce: &Bounce, arrival: &Arrival) -> O
     Some(pdf).filter(|p| *p > 0.0 && p.is_finite())
 }
 
-/// Which lights are sampled: both regions' where light is aimed through a wormhole's throat.
+/// Which lights are sampled: the other region's, where a point's own has none and light is
+/// aimed through a wormhole's throat.
 fn reach(lit: Lit<'_>) -> Reach {
     if lit.propagator.aims_through_throat() {
-        Reach::BothRegions
+        Reach::ThroughThroat
     } else {
         Reach::OwnRegion
     }

@@ -48,22 +48,22 @@ impl LightPoint<'_> {
 pub(super) enum Reach {
     /// Those of its own region.
     OwnRegion,
-    /// Those of both regions of a wormhole, the other's reached through the throat.
-    BothRegions,
+    /// Those of its own region where it has any, else the other region's of a wormhole, reached
+    /// through the throat.
+    ThroughThroat,
 }
 
-/// The probability that a shading point of region `from` samples a light of region `to`: with
-/// [`Reach::BothRegions`], each region with lights is chosen with probability ½ (where only one
-/// has lights, that one always). Light through the throat lights much of the other side (the sun
-/// of one region shining into a room of the other), and MIS with BSDF sampling keeps the cost of
-/// an even split small where it does not.
+/// The probability that a shading point of region `from` samples a light of region `to`. Where
+/// both regions have lights, a point samples its own: an even split between them doubled the
+/// cost of a sample and raised its variance on the wormhole room (`equal_time`, 160 × 120: 3.21 →
+/// 2.22 at equal time), whose throat passes little of the other side's light to most points.
 fn region_probability(world: &World, from: Region, to: Region, reach: Reach) -> f64 {
     let lit = |region: Region| world.light_count(region) > 0;
-    match reach {
-        Reach::OwnRegion => f64::from(u8::from(to == from)),
-        Reach::BothRegions if lit(from) && lit(from.other()) => 0.5,
-        Reach::BothRegions => f64::from(u8::from(lit(to))),
-    }
+    let sampled = match reach {
+        Reach::ThroughThroat if !lit(from) => from.other(),
+        Reach::OwnRegion | Reach::ThroughThroat => from,
+    };
+    f64::from(u8::from(to == sampled))
 }
 
 /// Samples a light for the shading point of `at`, in its region or as `reach` says
