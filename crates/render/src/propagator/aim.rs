@@ -26,8 +26,7 @@ const AIM_RTOL: f64 = 1e-5;
 
 /// Relative tolerance of an in-plane aim's shots: the ray's error stays ~10⁻⁶ of its distance
 /// from the centre, far inside the chord tolerance ε it must land within, and the density's
-/// ~10⁻⁶, far below the noise. Tighter costs steps for nothing: 10⁻⁸ took 18 % more of a
-/// wormhole render's time (the whole render, one thread).
+/// ~10⁻⁶, far below the noise. A tighter tolerance only costs steps.
 const PLANE_AIM_RTOL: f64 = 1e-6;
 
 /// The step cap of an aim's shots, as a fraction of the distance to the centre: loose, since no
