@@ -18,36 +18,44 @@
 //! Times are CPU times of the process (all threads, from `/proc/self/stat`; wall-clock time where
 //! that is not available), so other work on the machine does not skew the comparison.
 //!
-//! `cargo run --release --example equal_time -- [--scene PATH] [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP]`
+//! `cargo run --release --example equal_time -- [--scene PATH] [--reference PATH] [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP]`
 //! (default the black-hole room, 240 180 1024 64; about two minutes on two cores; each reference half renders half of
 //! REFERENCE_SPP). The ratio depends on the image size: the smaller it is, the more texture
 //! edges fall inside each pixel, noise both integrators share at equal samples (BENCHMARKS.md).
+//! `--reference PATH` keeps the reference in a file and reads it from there when it matches the
+//! image size, for comparing builds against one reference (the file does not record the scene:
+//! name one file per scene, size and reference samples).
 
 use render::film::Film;
 use render::scene::Scene;
 use render::settings::IntegratorKind;
 use std::sync::atomic::AtomicBool;
 
+const USAGE: &str =
+    "usage: equal_time [--scene PATH] [--reference PATH] [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP], all positive";
+
 const SCENE: &str = include_str!("../scenes/room-black-hole.toml");
 
 fn main() -> Result<(), String> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let (text, name) = match args.first().map(String::as_str) {
-        Some("--scene") if args.len() > 1 => {
-            let path = args.remove(1);
-            args.remove(0);
-            (std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?, path)
-        }
-        _ => (SCENE.to_string(), "scenes/room-black-hole.toml".to_string()),
+    let mut flag = |name: &str| -> Option<String> {
+        let at = args.iter().position(|a| a == name)?;
+        (at + 1 < args.len()).then(|| {
+            args.remove(at);
+            args.remove(at)
+        })
     };
+    let (text, name) = match flag("--scene") {
+        Some(path) => (std::fs::read_to_string(&path).map_err(|e| format!("{path}: {e}"))?, path),
+        None => (SCENE.to_string(), "scenes/room-black-hole.toml".to_string()),
+    };
+    let cache = flag("--reference").map(std::path::PathBuf::from);
     let args: Vec<u32> =
         args.iter().map(|a| a.parse::<u32>().map_err(|e| format!("{a}: {e}"))).collect::<Result<_, _>>()?;
     let [width, height, reference_spp, budget] = match args.as_slice() {
         [] => [240, 180, 1024, 64],
         &[w, h, r, b] if w > 0 && h > 0 && r > 0 && b > 0 => [w, h, r, b],
-        _ => {
-            return Err("usage: equal_time [--scene PATH] [WIDTH HEIGHT REFERENCE_SPP BUDGET_SPP], all positive".into())
-        }
+        _ => return Err(USAGE.into()),
     };
     let mut scene = scene::parse(&text, &name, std::path::Path::new(".")).map_err(|e| e.to_string())?;
     scene.settings.width = width;
@@ -55,16 +63,27 @@ fn main() -> Result<(), String> {
     let threads = rayon::current_num_threads();
     println!("{name} at {width}×{height}, depth {}, {threads} threads", scene.settings.max_depth);
 
-    let half = (reference_spp / 2).max(1);
-    let (reference_a, seconds_a) = run(&scene, IntegratorKind::BruteForce, half, 1000);
-    let (reference_b, seconds_b) = run(&scene, IntegratorKind::BruteForce, half, 1001);
-    let reference = Reference::new(&reference_a, &reference_b);
-    println!(
-        "reference: brute force, 2 × {half} spp, {:.1} s, mean {:.5}, RMSE of its own noise {:.5}",
-        seconds_a + seconds_b,
-        reference.mean(),
-        reference.noise.sqrt()
-    );
+    let reference = match cache.as_deref().map(|path| (path, Reference::load(path, width * height))) {
+        Some((path, Ok(reference))) => {
+            println!("reference: read from {}", path.display());
+            reference
+        }
+        loaded => {
+            if let Some((path, Err(e))) = loaded {
+                println!("reference: {} not read ({e}), rendering it", path.display());
+            }
+            let half = (reference_spp / 2).max(1);
+            let (reference_a, seconds_a) = run(&scene, IntegratorKind::BruteForce, half, 1000);
+            let (reference_b, seconds_b) = run(&scene, IntegratorKind::BruteForce, half, 1001);
+            let reference = Reference::new(&reference_a, &reference_b);
+            println!("reference: brute force, 2 × {half} spp, {:.1} s", seconds_a + seconds_b);
+            if let Some(path) = &cache {
+                reference.save(path).map_err(|e| format!("{}: {e}", path.display()))?;
+            }
+            reference
+        }
+    };
+    println!("reference: mean {:.5}, RMSE of its own noise {:.5}", reference.mean(), reference.noise.sqrt());
 
     run(&scene, IntegratorKind::Path, 1, 1);
     let pilot_spp = (budget / 4).max(1);
@@ -133,6 +152,24 @@ impl Reference {
         let noise = squared_difference(pixels(a), pixels(b)) / 4.0;
         let mean = pixels(a).zip(pixels(b)).map(|(p, q)| std::array::from_fn(|i| 0.5 * (p[i] + q[i])));
         Self { pixels: mean.collect(), noise }
+    }
+
+    /// The reference as [`Reference::save`] wrote it, if it has `pixels` pixels.
+    fn load(path: &std::path::Path, pixels: u32) -> Result<Self, String> {
+        let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+        let values: Vec<f64> =
+            bytes.chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap_or_default())).collect();
+        let Some((&noise, rest)) = values.split_first() else { return Err("empty".into()) };
+        if rest.len() != 3 * pixels as usize {
+            return Err(format!("{} values, not 3 × {pixels}: another scene or size", rest.len()));
+        }
+        Ok(Self { pixels: rest.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(), noise })
+    }
+
+    /// Writes the noise and the pixels as little-endian `f64`s, for [`Reference::load`].
+    fn save(&self, path: &std::path::Path) -> std::io::Result<()> {
+        let values = std::iter::once(self.noise).chain(self.pixels.iter().flatten().copied());
+        std::fs::write(path, values.flat_map(f64::to_le_bytes).collect::<Vec<u8>>())
     }
 
     fn mean(&self) -> f64 {

@@ -98,11 +98,12 @@ fn aimed_light_sampling_agrees_with_brute_force_beside_a_wormhole() {
     }
 }
 
-/// The wormhole room of [`room_in`] in the upper region with its lamp dark, and a lamp in the
-/// lower region facing the throat, whose light reaches the room only through it.
-fn room_lit_through_a_throat() -> Scene {
+/// The wormhole room of [`room_in`] in the upper region with its lamp's radiance `own_lamp`
+/// (`""`: dark), and a lamp in the lower region facing the throat, whose light reaches the room
+/// only through it.
+fn room_lit_through_a_throat(own_lamp: &str) -> Scene {
     let room = room_text("[spacetime]\ntype = \"ellis\"\nthroat = 0.5", "upper");
-    let mut text = room.replace("emission = { radiance = [5, 5, 5] }", "");
+    let mut text = room.replace("emission = { radiance = [5, 5, 5] }", own_lamp);
     text.push_str(
         r#"
 [[objects]]
@@ -121,7 +122,7 @@ emission = { radiance = [3, 6, 9] }
 /// lamp sharp-edged, so the gain is smaller than in one region).
 #[test]
 fn aimed_light_through_a_throat_agrees_with_brute_force() {
-    let scene = room_lit_through_a_throat();
+    let scene = room_lit_through_a_throat("");
     let aimed = replicas(&scene, IntegratorKind::Path, 32, 0..REPLICAS);
     // Brute force finds the lamp only through the throat's small opening: it needs more samples.
     let brute = replicas(&scene, IntegratorKind::BruteForce, 256, 0..REPLICAS);
@@ -129,6 +130,17 @@ fn aimed_light_through_a_throat_agrees_with_brute_force() {
     let brute32 = replicas(&scene, IntegratorKind::BruteForce, 32, 0..REPLICAS);
     let ratio = spread(&brute32) / spread(&aimed);
     assert!(ratio > 1.5, "variance ratio brute force ÷ aimed at 32 spp: {ratio}");
+}
+
+/// Where both regions are lit, each shading point splits its light samples between them by its
+/// own estimate of what each gives it: unbiased, with that split in the MIS weights of the
+/// emitters BSDF sampling finds in either region.
+#[test]
+fn aimed_light_from_both_regions_agrees_with_brute_force() {
+    let scene = room_lit_through_a_throat("emission = { radiance = [1, 1, 1] }");
+    let aimed = replicas(&scene, IntegratorKind::Path, 16, 0..REPLICAS);
+    let brute = replicas(&scene, IntegratorKind::BruteForce, 128, 0..REPLICAS);
+    assert_agree(&aimed, &brute, 0.03, "room lit in both regions");
 }
 
 #[test]

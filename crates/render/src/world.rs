@@ -43,6 +43,8 @@ struct RegionScene {
     light_cdf: Vec<f64>,
     /// The total of those powers (world areas), for choosing between regions.
     light_power: f64,
+    /// The lights as one source, for [`World::irradiance_estimate`].
+    light_cluster: LightCluster,
     sky: Sky,
     /// Radius of the ball about the world origin that no object reaches into.
     empty_radius: f64,
@@ -59,19 +61,17 @@ impl RegionScene {
         let mut light_cdf = Vec::new();
         let mut total = 0.0;
         for (i, o) in objects.iter().enumerate() {
-            if let Some(e) = &o.emission {
-                let area = o.shape.area();
-                let power = e.exitance_luminance() * area;
-                if area.is_finite() && power > 0.0 {
-                    total += power;
-                    lights.push(i);
-                    light_cdf.push(total);
-                }
+            let power = light_power(o);
+            if o.shape.area().is_finite() && power > 0.0 {
+                total += power;
+                lights.push(i);
+                light_cdf.push(total);
             }
         }
         for c in &mut light_cdf {
             *c /= total;
         }
+        let light_cluster = LightCluster::new(lights.iter().map(|&i| (&bounds[i], light_power(&objects[i]))), total);
         let empty_radius = bounds
             .iter()
             .zip(&planes)
@@ -82,7 +82,64 @@ impl RegionScene {
             })
             .fold(f64::INFINITY, f64::min);
         let empty_box = empty_box(&bounds);
-        Self { objects, bounds, planes, bvh, lights, light_cdf, light_power: total, sky, empty_radius, empty_box }
+        let light_power = total;
+        Self {
+            objects,
+            bounds,
+            planes,
+            bvh,
+            lights,
+            light_cdf,
+            light_power,
+            light_cluster,
+            sky,
+            empty_radius,
+            empty_box,
+        }
+    }
+}
+
+/// The power an emitting object is chosen by: its radiance's luminance × world area × sides.
+fn light_power(object: &Object) -> f64 {
+    object.emission.as_ref().map_or(0.0, |e| e.exitance_luminance() * object.shape.area())
+}
+
+/// A region's lights seen as one isotropic source of their total power at their power-weighted
+/// centre, smeared over their power-weighted spread (as a light BVH's node stands for its
+/// lights, Conty Estevez & Kulla 2018).
+#[derive(Clone, Copy, Debug, Default)]
+struct LightCluster {
+    power: f64,
+    centre: Vec3,
+    /// Power-weighted mean of each light's squared distance from the centre plus its own squared
+    /// half-diagonal.
+    spread2: f64,
+}
+
+impl LightCluster {
+    /// The cluster of lights given by their bounds and powers, of total power `total`.
+    fn new<'a>(lights: impl Iterator<Item = (&'a Aabb, f64)> + Clone, total: f64) -> Self {
+        if total <= 0.0 {
+            return Self::default();
+        }
+        let centre = lights.clone().fold(Vec3::ZERO, |c, (b, power)| c + b.centroid() * (power / total));
+        let spread2 = lights
+            .map(|(b, power)| {
+                ((b.centroid() - centre).length_squared() + (0.5 * b.diagonal()).length_squared()) * power
+            })
+            .sum::<f64>()
+            / total;
+        Self { power: total, centre, spread2 }
+    }
+
+    /// `Φ / (4π (d² + s²))` at `x`: the cluster's irradiance at distance `d` from its centre,
+    /// blind to occlusion and orientation, and bounded near the lights by their spread `s`; 0
+    /// without lights.
+    fn irradiance(&self, x: Vec3) -> f64 {
+        if self.power == 0.0 {
+            return 0.0;
+        }
+        self.power / (4.0 * std::f64::consts::PI * ((x - self.centre).length_squared() + self.spread2))
     }
 }
 
@@ -329,6 +386,12 @@ impl World {
         self.region(region).light_power
     }
 
+    /// A rough estimate of the irradiance a region's lights give world point `x` of it, blind to
+    /// occlusion, orientation and lensing: for weighing one group of lights against another.
+    pub fn irradiance_estimate(&self, region: Region, x: Vec3) -> f64 {
+        self.region(region).light_cluster.irradiance(x)
+    }
+
     /// Picks an emitter in proportion to its power.
     pub fn choose_light(&self, region: Region, u: f64) -> Option<LightChoice> {
         let r = self.region(region);
@@ -380,6 +443,24 @@ mod tests {
         assert_eq!(w.choose_light(Region::Upper, 0.1).unwrap().object, 0);
         assert_eq!(w.choose_light(Region::Upper, 0.3).unwrap().object, 1);
         assert!(w.choose_light(Region::Lower, 0.3).is_none());
+    }
+
+    /// Far from its lights the estimate is their sum as point sources, `Σ Φᵢ / (4π dᵢ²)`; at a
+    /// light it stays finite, bounded by their spread.
+    #[test]
+    fn irradiance_estimate_is_the_lights_far_off_and_finite_among_them() {
+        let w = world_with_two_lights();
+        let point_sources = |x: Vec3| {
+            let (a, b) = ((x - Vec3::ZERO).length_squared(), (x - Vec3::new(5.0, 0.0, 0.0)).length_squared());
+            (4.0 * std::f64::consts::PI / a + 12.0 * std::f64::consts::PI / b) / (4.0 * std::f64::consts::PI)
+        };
+        for x in [Vec3::new(200.0, 0.0, 0.0), Vec3::new(-150.0, 80.0, 30.0), Vec3::new(3.0, 0.0, -300.0)] {
+            let (estimate, exact) = (w.irradiance_estimate(Region::Upper, x), point_sources(x));
+            assert!((estimate / exact - 1.0).abs() < 2e-3, "{x:?}: {estimate} against {exact}");
+        }
+        let at_light = w.irradiance_estimate(Region::Upper, Vec3::new(5.0, 0.0, 0.0));
+        assert!(at_light.is_finite() && at_light > 0.0 && at_light < 4.0 / 7.0);
+        assert_eq!(w.irradiance_estimate(Region::Lower, Vec3::ZERO), 0.0);
     }
 
     #[test]

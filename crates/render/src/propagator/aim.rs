@@ -68,10 +68,11 @@ impl Propagator {
         self.aims() && self.spacetime.choose_tracer(InPlane(self))
     }
 
-    /// Whether light is aimed through a wormhole's throat, from one region to the other
-    /// (in the ray's plane; a 4-D aim stays in its region).
-    pub fn aims_through_throat(&self) -> bool {
-        self.aims_both_ways() && self.spacetime.capabilities().throat().is_some()
+    /// The radius of the wormhole's throat (about the world origin of both regions) where light
+    /// is aimed through it, from one region to the other (in the ray's plane; a 4-D aim stays
+    /// in its region); `None` where it is not.
+    pub fn aims_through_throat(&self) -> Option<f64> {
+        self.spacetime.capabilities().throat().filter(|_| self.aims_both_ways())
     }
 
     /// The light ray from world point `from` to world point `to` (each with its region) that

@@ -49,7 +49,7 @@ pub(super) fn direct<C: Colour>(
     stats: &mut PathStats,
 ) -> C {
     let (u_choice, u_point, u_way) = (sampler.next_f64(), sampler.next_2d(), sampler.next_f64());
-    let Some(light) = sample_point(lit.world, at, reach(lit), u_choice, u_point) else { return C::ZERO };
+    let Some(light) = sample_point(lit.world, at, reach(lit, at.hit.p), u_choice, u_point) else { return C::ZERO };
     let ways: &[Way] = if lit.propagator.aims_both_ways() { &Way::BOTH } else { &[Way::Short] };
     let mut sum = C::ZERO;
     for &way in ways {
@@ -92,7 +92,7 @@ pub(super) fn emitter_pdf(lit: Lit<'_>, bounce: &Bounce, arrival: &Arrival) -> O
         Some(swept) if lit.propagator.aims_both_ways() => Way::of_sweep(swept)?,
         _ => Way::Short,
     };
-    let (probability, area) = choice(lit.world, bounce.region, reach(lit), arrival)?;
+    let (probability, area) = choice(lit.world, bounce.region, reach(lit, bounce.from), arrival)?;
     let aimed = lit.propagator.aim((bounce.region, bounce.from), (arrival.region, arrival.hit.p), way)?;
     let distance = (arrival.hit.p - bounce.from).length();
     if (aimed.start - bounce.direction).length() * distance > SAME_RAY * lit.propagator.epsilon() {
@@ -103,14 +103,10 @@ pub(super) fn emitter_pdf(lit: Lit<'_>, bounce: &Bounce, arrival: &Arrival) -> O
     Some(pdf).filter(|p| *p > 0.0 && p.is_finite())
 }
 
-/// Which lights are sampled: the other region's, where a point's own has none and light is
+/// Which lights a shading point at world point `from` samples: both regions' where light is
 /// aimed through a wormhole's throat.
-fn reach(lit: Lit<'_>) -> Reach {
-    if lit.propagator.aims_through_throat() {
-        Reach::ThroughThroat
-    } else {
-        Reach::OwnRegion
-    }
+fn reach(lit: Lit<'_>, from: Vec3) -> Reach {
+    lit.propagator.aims_through_throat().map_or(Reach::OwnRegion, |radius| Reach::ThroughThroat { radius, from })
 }
 
 /// World point `p` of `region` as seen from the start's region `start` about the centre: the
