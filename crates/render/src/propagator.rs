@@ -608,12 +608,12 @@ impl Propagator {
 
     /// The ray leaving world point `origin` of `region` along the local-frame unit direction
     /// `direction` as a state of `metric`'s chart (world vectors rotated in with `to_chart`), or
-    /// how it ends at once: off the chart, or where no local observer exists.
-    fn start<M: Metric>(&self, metric: &M, region: Region, origin: Vec3, direction: Vec3) -> Result<State, RayEnd> {
+    /// how it ends at once: failed off the chart, captured where no local observer exists.
+    fn start<M: Metric>(&self, metric: &M, region: Region, origin: Vec3, direction: Vec3) -> Result<State, NoStart> {
         let Some(x) = metric.world_to_chart(region, self.to_chart(origin).to_array(), 0.0) else {
-            return Err(RayEnd::Failed);
+            return Err(NoStart(Box::new(RayEnd::Failed)));
         };
-        let Ok(frame) = Tetrad::local_observer(metric, &x) else { return Err(RayEnd::Captured) };
+        let Ok(frame) = Tetrad::local_observer(metric, &x) else { return Err(NoStart(Box::new(RayEnd::Captured))) };
         let p = frame.backward_momentum(&metric.metric(&x), self.to_chart(direction).to_array(), 1.0);
         Ok(State { x, p })
     }
@@ -632,7 +632,7 @@ impl Propagator {
             Ok(start) => {
                 self.follow(HamiltonianTracer::new(metric, start, self.trace), &start, &OwnChart(metric), world, region)
             }
-            Err(end) => end,
+            Err(NoStart(end)) => *end,
         }
     }
 
@@ -647,7 +647,7 @@ impl Propagator {
     ) -> RayEnd {
         match self.start(metric, region, origin, direction) {
             Ok(start) => self.follow(metric.ray_tracer(start, self.trace), &start, &OwnChart(metric), world, region),
-            Err(end) => end,
+            Err(NoStart(end)) => *end,
         }
     }
 
@@ -704,6 +704,10 @@ impl Propagator {
         }
     }
 }
+
+/// How a ray that cannot start ends ([`RayEnd::Failed`] or [`RayEnd::Captured`]), boxed: a
+/// hit's arrival, which it never is, makes `RayEnd` large.
+struct NoStart(Box<RayEnd>);
 
 /// The chart a 4-D ray is traced in, as the scene sees it: the spacetime's own chart (whose
 /// spatial points, rotated by `to_chart`, are world points) or one mapped to it.

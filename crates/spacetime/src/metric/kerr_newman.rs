@@ -122,7 +122,7 @@ impl OwnStepper for KerrNewman {
     type Tracer = MinoTracer;
 
     fn ray_tracer(&self, start: State, settings: TraceSettings) -> MinoTracer {
-        MinoTracer::new(&*self, start, settings)
+        MinoTracer::new(self, start, settings)
     }
 }
 
