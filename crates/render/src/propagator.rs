@@ -32,8 +32,8 @@ use crate::world::{Blockers, FlatBlockers, World};
 use spacetime::geodesic::connect::{Connection, Connector, Way, Waypoints};
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
 use spacetime::geodesic::tangent_triangle::tangent_triangle;
-use spacetime::geodesic::{HamiltonianStep, HamiltonianTracer, Integrator, State, TraceSettings};
-use spacetime::metric::{LocalFrame, Metric, Tracers};
+use spacetime::geodesic::{HamiltonianTracer, Integrator, RayStep, RayTracer, State, TraceSettings};
+use spacetime::metric::{LocalFrame, Metric, OwnStepper, Tracers};
 use spacetime::tensor::Vector4;
 use spacetime::{Fate, Region, Spacetime, Tetrad, Visit};
 
@@ -606,6 +606,18 @@ impl Propagator {
         Some(first)
     }
 
+    /// The ray leaving world point `origin` of `region` along the local-frame unit direction
+    /// `direction` as a state of `metric`'s chart (world vectors rotated in with `to_chart`), or
+    /// how it ends at once: failed off the chart, captured where no local observer exists.
+    fn start<M: Metric>(&self, metric: &M, region: Region, origin: Vec3, direction: Vec3) -> Result<State, NoStart> {
+        let Some(x) = metric.world_to_chart(region, self.to_chart(origin).to_array(), 0.0) else {
+            return Err(NoStart(Box::new(RayEnd::Failed)));
+        };
+        let Ok(frame) = Tetrad::local_observer(metric, &x) else { return Err(NoStart(Box::new(RayEnd::Captured))) };
+        let p = frame.backward_momentum(&metric.metric(&x), self.to_chart(direction).to_array(), 1.0);
+        Ok(State { x, p })
+    }
+
     /// The 4-D tracer, in the chart's axes: world vectors are rotated in with `to_chart` and
     /// chord points rotated back out.
     fn hamiltonian<M: Metric>(
@@ -616,21 +628,36 @@ impl Propagator {
         origin: Vec3,
         direction: Vec3,
     ) -> RayEnd {
-        let Some(x) = metric.world_to_chart(region, self.to_chart(origin).to_array(), 0.0) else {
-            return RayEnd::Failed;
-        };
-        let Ok(frame) = Tetrad::local_observer(metric, &x) else { return RayEnd::Captured };
-        let p = frame.backward_momentum(&metric.metric(&x), self.to_chart(direction).to_array(), 1.0);
-        self.follow(metric, State { x, p }, &OwnChart(metric), world, region)
+        match self.start(metric, region, origin, direction) {
+            Ok(start) => {
+                self.follow(HamiltonianTracer::new(metric, start, self.trace), &start, &OwnChart(metric), world, region)
+            }
+            Err(NoStart(end)) => *end,
+        }
     }
 
-    /// Follows the ray that starts at `start` in the chart of `traced`, which `chart` relates to
-    /// the spacetime's own, to its end. The escaped ray's energy at infinity, over its energy at
-    /// the start, is the conserved `p_t` of `start`: its local observer measures energy 1.
-    fn follow<M: Metric, C: TracedChart>(
+    /// The metric's own 4-D stepper, as [`Propagator::hamiltonian`] uses the generic one.
+    fn own_stepper<M: OwnStepper>(
         &self,
-        traced: &M,
-        start: State,
+        metric: &M,
+        world: &World,
+        region: Region,
+        origin: Vec3,
+        direction: Vec3,
+    ) -> RayEnd {
+        match self.start(metric, region, origin, direction) {
+            Ok(start) => self.follow(metric.ray_tracer(start, self.trace), &start, &OwnChart(metric), world, region),
+            Err(NoStart(end)) => *end,
+        }
+    }
+
+    /// Follows the ray that `tracer` traces from `start`, in a chart that `chart` relates to the
+    /// spacetime's own, to its end. The escaped ray's energy at infinity, over its energy at the
+    /// start, is the conserved `p_t` of `start`: its local observer measures energy 1.
+    fn follow<T: RayTracer, C: TracedChart>(
+        &self,
+        tracer: T,
+        start: &State,
         chart: &C,
         world: &World,
         region: Region,
@@ -644,10 +671,10 @@ impl Propagator {
         // The step's ends are its start and end states themselves; a step starts where the
         // previous one ended, so its first knot is that one's last.
         let mut last = place(&start.x, 0.0);
-        let trace = HamiltonianTracer::new(traced, start, self.trace).run(|step: &HamiltonianStep| {
+        let trace = tracer.run(|step: &T::Step| {
             let knot = |theta: f64| place(&step.position_at(theta), theta);
             let curved = CurvedStep { knot: &knot, motion: None, axis: None, leaves_origin: false };
-            let (from, to) = (Knot { theta: 0.0, ..last }, place(&step.end.x, 1.0));
+            let (from, to) = (Knot { theta: 0.0, ..last }, place(&step.end_position(), 1.0));
             last = to;
             match self.curved(world, region, &curved, from, to) {
                 Some(found) => {
@@ -677,6 +704,10 @@ impl Propagator {
         }
     }
 }
+
+/// How a ray that cannot start ends ([`RayEnd::Failed`] or [`RayEnd::Captured`]), boxed: a
+/// hit's arrival, which it never is, makes `RayEnd` large.
+struct NoStart(Box<RayEnd>);
 
 /// The chart a 4-D ray is traced in, as the scene sees it: the spacetime's own chart (whose
 /// spatial points, rotated by `to_chart`, are world points) or one mapped to it.
@@ -823,6 +854,15 @@ impl Tracers for Ray4<'_> {
     fn four_d<M: Metric>(self, metric: &M) -> RayEnd {
         let Ray4 { propagator, world, region, origin, direction } = self;
         propagator.hamiltonian(metric, world, region, origin, direction)
+    }
+
+    /// The poster's RK4 steps are affine, so it keeps the 4-D tracer.
+    fn own_stepper<M: OwnStepper>(self, metric: &M) -> RayEnd {
+        let Ray4 { propagator, world, region, origin, direction } = self;
+        if matches!(propagator.intersection, Intersection::Poster { .. }) {
+            return propagator.hamiltonian(metric, world, region, origin, direction);
+        }
+        propagator.own_stepper(metric, world, region, origin, direction)
     }
 }
 

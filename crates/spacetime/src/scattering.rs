@@ -8,7 +8,7 @@
 
 use crate::geodesic::plane::{trace_plane, PlaneMetric, PlaneRay, PlaneStart};
 use crate::geodesic::{HamiltonianTracer, Integrator, State, TraceSettings, Visit};
-use crate::metric::{Metric, Spacetime, Tracers};
+use crate::metric::{Metric, OwnStepper, Spacetime, Tracers};
 use crate::tensor::{cross3, dot3, norm3, spatial};
 use crate::Fate;
 use std::f64::consts::PI;
@@ -62,6 +62,11 @@ impl Tracers for Scatter {
 
     fn four_d<M: Metric>(self, metric: &M) -> Scattering {
         hamiltonian(metric, self.b, self.inclination_rad, self.integrator)
+    }
+
+    /// Scattering is measured with the 4-D tracer whatever the metric's own stepper.
+    fn own_stepper<M: OwnStepper>(self, metric: &M) -> Scattering {
+        self.four_d(metric)
     }
 }
 

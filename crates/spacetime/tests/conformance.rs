@@ -163,16 +163,17 @@ fn where_nothing_can_stay_at_rest() {
     assert_eq!(hole.capabilities().rest(Region::Lower, [5.0, 0.0, 0.0]), Err(NoRest::NoSuchRegion));
 }
 
-/// Each metric's tracer: straight where flat, in-plane where static and spherically symmetric.
+/// Each metric's tracer: straight where flat, in-plane where static and spherically symmetric, its
+/// own 4-D stepper for holes of Kerr's family.
 #[test]
 fn tracers_fit_the_metrics() {
     assert_eq!(chosen_tracer(&spacetime::Minkowski), "straight");
     assert_eq!(chosen_tracer(&spacetime::Schwarzschild::new(1.0)), "in-plane");
     assert_eq!(chosen_tracer(&spacetime::Schwarzschild::new(0.0)), "straight");
-    assert_eq!(chosen_tracer(&spacetime::Kerr::new(1.0, 0.5)), "4-D");
+    assert_eq!(chosen_tracer(&spacetime::Kerr::new(1.0, 0.5)), "own 4-D");
     assert_eq!(chosen_tracer(&spacetime::Ellis::new(1.0)), "in-plane");
     assert_eq!(chosen_tracer(&spacetime::ReissnerNordstrom::new(1.0, 0.9)), "in-plane");
     assert_eq!(chosen_tracer(&spacetime::ReissnerNordstrom::new(0.0, 0.0)), "straight");
-    assert_eq!(chosen_tracer(&spacetime::KerrNewman::new(1.0, 0.6, 0.5)), "4-D");
+    assert_eq!(chosen_tracer(&spacetime::KerrNewman::new(1.0, 0.6, 0.5)), "own 4-D");
     assert_eq!(chosen_tracer(&spacetime::Wormhole::new(spacetime::Dneg::new(1.0, 0.01, 0.05))), "in-plane");
 }

@@ -10,7 +10,7 @@ use spacetime::geodesic::connect::Way;
 use spacetime::geodesic::plane::PlaneMetric;
 use spacetime::geodesic::plane_aim::{plane_aim, PlaneAimSettings, Side};
 use spacetime::geodesic::{Integrator, TraceSettings};
-use spacetime::metric::{LocalFrame, Metric, Tracers};
+use spacetime::metric::{LocalFrame, Metric, OwnStepper, Tracers};
 use spacetime::{Region, Tetrad};
 
 /// Shots an aim may take: Newton's method converges in two or three from a good first shot;
@@ -173,6 +173,11 @@ impl Tracers for AimRay<'_> {
         self.propagator.aim_in_plane(metric, from, (to, side), self.way)
     }
 
+    /// Aiming needs the ray bundle, which rides on Hamilton's equations.
+    fn own_stepper<M: OwnStepper>(self, metric: &M) -> Option<Aimed> {
+        self.four_d(metric)
+    }
+
     fn four_d<M: Metric>(self, metric: &M) -> Option<Aimed> {
         let ((region, from), (to_region, to)) = (self.from, self.to);
         match self.way {
@@ -197,6 +202,10 @@ impl Tracers for InPlane<'_> {
     }
 
     fn four_d<M: Metric>(self, _metric: &M) -> bool {
+        false
+    }
+
+    fn own_stepper<M: OwnStepper>(self, _metric: &M) -> bool {
         false
     }
 }

@@ -5,15 +5,15 @@
 //! backwards from there along `n`. About a spinning hole it is not — frame dragging turns light
 //! one way — and the outgoing chart the hole is traced in is singular on the future horizon that
 //! forward light falls through. Such light is the backward light of the hole's spin-reversed
-//! twin in the time-reversed ingoing chart ([`SpinTwin`]): it is traced there with the backward
-//! tracer, and its points and momenta are mapped back to the hole's chart to meet the scene and
+//! twin in the time-reversed ingoing chart ([`SpinTwin`]): it is traced there with the twin's own
+//! backward stepper, and its points and momenta are mapped back to the hole's chart to meet the scene and
 //! be measured by the hole's local observers.
 
 use super::{OwnChart, Propagator, RayEnd, TracedChart};
 use crate::geometry::Vec3;
 use crate::world::World;
 use spacetime::geodesic::State;
-use spacetime::metric::{Forwards, Metric, SpinTwin};
+use spacetime::metric::{Forwards, Metric, OwnStepper, SpinTwin};
 use spacetime::tensor::Vector4;
 use spacetime::{Region, Tetrad};
 
@@ -46,7 +46,8 @@ impl Propagator {
         if !y.iter().chain(q.iter()).all(|c| c.is_finite()) {
             return RayEnd::Failed;
         }
-        self.follow(&twin.twin(), State { x: y, p: q }, &TwinChart { hole, twin }, world, region)
+        let start = State { x: y, p: q };
+        self.follow(twin.twin().ray_tracer(start, self.trace), &start, &TwinChart { hole, twin }, world, region)
     }
 }
 

@@ -8,7 +8,7 @@
 //! Steps are controlled, capped and ended by the ray alone, so a ray traced with its bundle takes
 //! the steps it takes without.
 
-use super::{dopri5, Failure, Fate, Integrator, Interpolant, State, Trace, TraceSettings, Visit};
+use super::{dopri5, Failure, Fate, Integrator, Interpolant, RayStep, RayTracer, State, Trace, TraceSettings, Visit};
 use crate::metric::{Metric, Region};
 use crate::tensor::{Covector4, Vector4};
 
@@ -69,6 +69,21 @@ impl<const N: usize> HamiltonianStep<N> {
     /// The whole flow's state at fraction `θ` of the step.
     pub fn flow_at(&self, theta: f64) -> [f64; N] {
         self.interpolant.dense(theta)
+    }
+}
+
+impl<const N: usize> RayStep for HamiltonianStep<N> {
+    #[inline]
+    fn position_at(&self, theta: f64) -> Vector4 {
+        HamiltonianStep::position_at(self, theta)
+    }
+
+    fn end_position(&self) -> Vector4 {
+        self.end.x
+    }
+
+    fn at(&self, theta: f64) -> State {
+        HamiltonianStep::at(self, theta)
     }
 }
 
@@ -241,6 +256,14 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
             }
         };
         Trace { fate, steps: self.steps, max_abs_hamiltonian: max_h, end: self.state() }
+    }
+}
+
+impl<M: Metric + ?Sized, const N: usize, F: Flow<N>> RayTracer for HamiltonianTracer<'_, M, N, F> {
+    type Step = HamiltonianStep<N>;
+
+    fn run(self, visit: impl FnMut(&HamiltonianStep<N>) -> Visit) -> Trace {
+        HamiltonianTracer::run(self, visit)
     }
 }
 

@@ -17,6 +17,7 @@ pub mod connect;
 pub mod dopri5;
 mod hamiltonian;
 mod interpolant;
+pub mod mino;
 pub mod plane;
 pub mod plane_aim;
 pub mod rk4;
@@ -27,6 +28,26 @@ pub use hamiltonian::{angular_momentum_z, energy, trace, Flow, HamiltonianStep, 
 pub use interpolant::Interpolant;
 
 use crate::tensor::{Covector4, Vector4};
+
+/// One accepted step of a 4-D tracer, with the ray anywhere inside it: what a caller testing
+/// the ray against a scene needs, whichever stepper took it.
+pub trait RayStep {
+    /// Chart position `x^μ` at fraction `θ ∈ [0, 1]` of the step.
+    fn position_at(&self, theta: f64) -> Vector4;
+    /// Chart position at the step's end (`position_at(1)`, without interpolating).
+    fn end_position(&self) -> Vector4;
+    /// The ray's state (chart position and covariant momentum) at fraction `θ` of the step.
+    fn at(&self, theta: f64) -> State;
+}
+
+/// A tracer of one ray in a 4-D chart: the generic [`HamiltonianTracer`], or a stepper a metric
+/// provides for itself ([`crate::metric::OwnStepper`]). Both decide the fate by the settings'
+/// escape radius and the metric's horizon.
+pub trait RayTracer {
+    type Step: RayStep;
+    /// Traces the ray to its end, showing every accepted step to `visit`.
+    fn run(self, visit: impl FnMut(&Self::Step) -> Visit) -> Trace;
+}
 
 /// A point on a ray: position `x^μ` and covariant momentum `p_μ`.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 //! on every built-in spacetime), public so that a user's own [`Metric`] can be checked the same
 //! way. Each check panics with a message at the first failure, as a test does.
 
-use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
+use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers};
 use super::spin_twin::SpinTwin;
 use super::{Metric, Region};
 use crate::geodesic::plane::PlaneMetric;
@@ -64,9 +64,12 @@ impl Tracers for Chosen {
     fn four_d<M: Metric>(self, _metric: &M) -> &'static str {
         "4-D"
     }
+    fn own_stepper<M: OwnStepper>(self, _metric: &M) -> &'static str {
+        "own 4-D"
+    }
 }
 
-/// The name of the tracer `m` chooses: "straight", "in-plane" or "4-D".
+/// The name of the tracer `m` chooses: "straight", "in-plane", "4-D" or "own 4-D".
 pub fn chosen_tracer<M: Capabilities>(m: &M) -> &'static str {
     m.choose_tracer(Chosen)
 }
@@ -83,6 +86,7 @@ impl Tracers for PlaneCheck {
         check_plane_metric(metric, self.rho);
     }
     fn four_d<M: Metric>(self, _metric: &M) {}
+    fn own_stepper<M: OwnStepper>(self, _metric: &M) {}
 }
 
 /// The reduction of a static spherically symmetric metric to a ray's plane is consistent at

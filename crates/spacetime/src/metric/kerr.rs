@@ -9,13 +9,17 @@
 //! the past horizon, which backward-traced rays cross. The ring singularity (r = 0, z = 0) lies
 //! inside the horizon, where rays are stopped.
 
-use super::capabilities::{tetrad_frame, tetrad_lapse, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
+use super::capabilities::{
+    tetrad_frame, tetrad_lapse, Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers,
+};
 use super::kerr_schild::{hamilton_rhs, KerrSchild, KerrSchildPoint};
 use super::spin_twin::SpinTwin;
 use super::user::Scalar;
-use super::{Metric, Region};
+use super::{KerrNewman, Metric, Region};
 use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
+use crate::geodesic::mino::MinoTracer;
+use crate::geodesic::{State, TraceSettings};
 use crate::observer::Tetrad;
 use crate::tensor::{Covector4, Vector4};
 
@@ -210,8 +214,17 @@ impl Capabilities for Kerr {
         if self.mass == 0.0 {
             tracers.straight()
         } else {
-            tracers.four_d(self)
+            tracers.own_stepper(self)
         }
+    }
+}
+
+/// Rays in Mino time with their constants of motion ([`MinoTracer`]).
+impl OwnStepper for Kerr {
+    type Tracer = MinoTracer;
+
+    fn ray_tracer(&self, start: State, settings: TraceSettings) -> MinoTracer {
+        MinoTracer::new(&KerrNewman::new(self.mass, self.spin, 0.0), start, settings)
     }
 }
 

@@ -9,13 +9,15 @@
 //! `r² − 3Mr + 2Q² ± 2a√(Mr − Q²) = 0` (+ prograde).
 
 use super::capabilities::{tetrad_frame, tetrad_lapse};
-use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
+use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers};
 use super::kerr::{spheroidal, spheroidal_fields, spheroidal_rhs, spinning_rest};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::spin_twin::SpinTwin;
 use super::Region;
 use crate::disk::CircularOrbits;
 use crate::geodesic::connect::Connector;
+use crate::geodesic::mino::MinoTracer;
+use crate::geodesic::{State, TraceSettings};
 use crate::tensor::{Covector4, Vector4};
 
 /// Kerr–Newman spacetime.
@@ -110,8 +112,17 @@ impl Capabilities for KerrNewman {
         if self.mass == 0.0 {
             tracers.straight()
         } else {
-            tracers.four_d(self)
+            tracers.own_stepper(self)
         }
+    }
+}
+
+/// Rays in Mino time with their constants of motion ([`MinoTracer`]).
+impl OwnStepper for KerrNewman {
+    type Tracer = MinoTracer;
+
+    fn ray_tracer(&self, start: State, settings: TraceSettings) -> MinoTracer {
+        MinoTracer::new(self, start, settings)
     }
 }
 

@@ -23,7 +23,7 @@ pub(crate) mod user;
 mod written;
 
 pub use builtin::{ParameterError, Spacetime};
-pub use capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
+pub use capabilities::{Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers};
 pub use ellis::Ellis;
 pub use kerr::Kerr;
 pub use kerr_newman::KerrNewman;
