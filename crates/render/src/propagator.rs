@@ -628,12 +628,8 @@ impl Propagator {
         origin: Vec3,
         direction: Vec3,
     ) -> RayEnd {
-        match self.start(metric, region, origin, direction) {
-            Ok(start) => {
-                self.follow(HamiltonianTracer::new(metric, start, self.trace), &start, &OwnChart(metric), world, region)
-            }
-            Err(NoStart(end)) => *end,
-        }
+        let tracer = |start| HamiltonianTracer::new(metric, start, self.trace);
+        self.four_d_ray(metric, tracer, world, region, origin, direction)
     }
 
     /// The metric's own 4-D stepper, as [`Propagator::hamiltonian`] uses the generic one.
@@ -645,8 +641,23 @@ impl Propagator {
         origin: Vec3,
         direction: Vec3,
     ) -> RayEnd {
+        let tracer = |start| metric.ray_tracer(start, self.trace);
+        self.four_d_ray(metric, tracer, world, region, origin, direction)
+    }
+
+    /// The ray leaving `origin` along `direction`, followed by the 4-D tracer `tracer` makes
+    /// of its start in `metric`'s own chart.
+    fn four_d_ray<M: Metric, T: RayTracer>(
+        &self,
+        metric: &M,
+        tracer: impl FnOnce(State) -> T,
+        world: &World,
+        region: Region,
+        origin: Vec3,
+        direction: Vec3,
+    ) -> RayEnd {
         match self.start(metric, region, origin, direction) {
-            Ok(start) => self.follow(metric.ray_tracer(start, self.trace), &start, &OwnChart(metric), world, region),
+            Ok(start) => self.follow(tracer(start), &start, &OwnChart(metric), world, region),
             Err(NoStart(end)) => *end,
         }
     }
