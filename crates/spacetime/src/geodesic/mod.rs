@@ -23,6 +23,7 @@ pub mod plane_aim;
 pub mod rk4;
 mod start_table;
 pub mod tangent_triangle;
+mod taylor;
 
 pub use hamiltonian::{angular_momentum_z, energy, trace, Flow, HamiltonianStep, HamiltonianTracer, Ray};
 pub use interpolant::Interpolant;
