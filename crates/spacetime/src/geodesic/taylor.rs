@@ -1,5 +1,5 @@
 //! Pieces shared by the Taylor-series steppers ([`super::binet_taylor`] for the Schwarzschild
-//! orbit): the step length from the last two coefficients
+//! orbit, [`super::mino`] for Kerr's family): the step length from the last two coefficients
 //! (Jorba & Zou 2005, "A software package for the numerical integration of ODEs by means of
 //! high-order Taylor methods", Exp. Math. 14, §3.2.1), the Cauchy products `(a∗b)_N = Σ aᵢb_{N−i}`
 //! of their recurrences (ibid. §2) and the evaluation of the polynomial. The products take
@@ -14,6 +14,12 @@ pub(super) fn product_without_first<const N: usize>(a: &[f64], b: &[f64]) -> f64
         sum += a[i] * b[N - i];
     }
     sum
+}
+
+/// `(a∗b)_N = Σ aᵢb_{N−i}` over `0 ≤ i ≤ N`.
+#[inline(always)]
+pub(super) fn product<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
+    product_without_first::<N>(a, b) + a[0] * b[N]
 }
 
 /// `(c∗c)_N` without its terms `cᵢc_{N−i}` of `i < FROM` or `N − i < FROM`, by its symmetry:
