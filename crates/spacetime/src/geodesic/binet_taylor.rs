@@ -23,6 +23,8 @@
 //! tolerances of the connection solver a step spans a good part of a radian, and a connection
 //! costs two thirds of what Dormand–Prince 5(4) took.
 
+use super::taylor::{product_without_first, shorter_root, square_from, value, value_and_slope};
+
 /// Order of the series. Jorba & Zou's optimum is about `−ln(tol)/2` (8 at 10⁻⁷); measured on
 /// the connection benchmark (`cargo bench -p nullpath-spacetime --bench connect`), orders 6, 8,
 /// 10, 12, 14, 20 take 623, 421, 358, 406, 448, 688 µs for 256 short-way connections at a
@@ -104,7 +106,7 @@ impl Series {
                 .map(|(c, floor)| tol * (c[0].abs().max(c[1].abs()) + floor) / c[n].abs())
                 .fold(1.0, f64::min)
         };
-        shorter_root(power_bound(ORDER - 1), power_bound(ORDER))
+        shorter_root::<{ ORDER as i32 - 1 }, { ORDER as i32 }>(power_bound(ORDER - 1), power_bound(ORDER))
     }
 
     /// `(u, u', J, J', K, K')` a step `h` on.
@@ -148,93 +150,6 @@ fn next_orbit<const N: usize>(c: &mut [f64; ORDER + 1], m3: f64, newest: f64) {
     c[N + 2] = (newest * c[N] + m3 * square_from::<1, N>(c)) * RECIPROCALS[N];
 }
 
-/// `(a∗b)_N − a₀b_N = Σ aᵢb_{N−i}` over `0 < i ≤ N`, the newest `b` (`a₁b_{N−1}`) last.
-#[inline(always)]
-fn product_without_first<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
-    let mut sum = 0.0;
-    for i in (1..N + 1).rev() {
-        sum += a[i] * b[N - i];
-    }
-    sum
-}
-
-/// `(c∗c)_N` without its terms `cᵢc_{N−i}` of `i < FROM` or `N − i < FROM`, by its symmetry:
-/// twice the products with `FROM ≤ i < N − i`, plus the middle square where `N` is even, the
-/// newest (`c_FROM c_{N−FROM}`) last. `FROM = 0` is the whole square.
-#[inline(always)]
-fn square_from<const FROM: usize, const N: usize>(c: &[f64]) -> f64 {
-    let mut sum = if N % 2 == 0 { 0.5 * c[N / 2] * c[N / 2] } else { 0.0 };
-    for i in (FROM..N.div_ceil(2)).rev() {
-        sum += c[i] * c[N - i];
-    }
-    2.0 * sum
-}
-
-/// The step `h ≤ 1` that keeps both `h^(N−1) ≤ before` and `h^N ≤ last` (bounds in `[0, 1]`):
-/// which root is smaller is told by integer powers, so only one root is taken.
-fn shorter_root(before: f64, last: f64) -> f64 {
-    if before.powi(ORDER as i32) < last.powi(ORDER as i32 - 1) {
-        root::<{ ORDER as i32 - 1 }>(before)
-    } else {
-        root::<{ ORDER as i32 }>(last)
-    }
-}
-
-/// `x^(1/N)` for `x ∈ [0, 1]` to within 2·10⁻³ relative, all a step length needs (a step that
-/// much too long raises the truncation term by 2 %): the exponent divided by `N` in the bits of
-/// `x` (within 6 %), then one step of Halley's method for `yᴺ = x`, which triples the digits.
-/// libm's `powf` cost 8 % of a connection.
-fn root<const N: i32>(x: f64) -> f64 {
-    if !(x > f64::MIN_POSITIVE) {
-        return 0.0;
-    }
-    let one = 1.0f64.to_bits() as i64;
-    let y = f64::from_bits(((x.to_bits() as i64 - one) / i64::from(N) + one) as u64);
-    let (yn, n) = (y.powi(N), f64::from(N));
-    y * ((n - 1.0) * yn + (n + 1.0) * x) / ((n + 1.0) * yn + (n - 1.0) * x)
-}
-
-/// A polynomial and its derivative at `h`.
-#[inline]
-fn value_and_slope<const N: usize>(c: &[f64; N], h: f64) -> (f64, f64) {
-    (value(c, h), slope(c, h))
-}
-
-/// A polynomial at `h` by Horner's rule in `h²` on its even and odd coefficients apart,
-/// `E(h²) + h O(h²)` (second-order Horner): two independent chains half as long as Horner's in
-/// `h`, whose dependent multiply–adds, not their count, are what a step's points wait for
-/// (with [`slope`], −9 % time on the curved room, docs/perf-journal.md, session 17).
-#[inline]
-fn value<const N: usize>(c: &[f64; N], h: f64) -> f64 {
-    let z = h * h;
-    let (mut even, mut odd) = (0.0, 0.0);
-    for n in (0..N).rev() {
-        if n % 2 == 0 {
-            even = even * z + c[n];
-        } else {
-            odd = odd * z + c[n];
-        }
-    }
-    even + h * odd
-}
-
-/// The derivative of a polynomial at `h`, as [`value`] evaluates it: `Σ n cₙ hⁿ⁻¹`, its even
-/// and odd terms apart.
-#[inline]
-fn slope<const N: usize>(c: &[f64; N], h: f64) -> f64 {
-    let z = h * h;
-    let (mut even, mut odd) = (0.0, 0.0);
-    for n in (1..N).rev() {
-        let term = n as f64 * c[n];
-        if n % 2 == 0 {
-            even = even * z + term;
-        } else {
-            odd = odd * z + term;
-        }
-    }
-    h * even + odd
-}
-
 /// A step of the orbit `u'' = −u + 3Mu²` alone, as the in-plane tracer takes it for the rays of
 /// a render: the Taylor polynomial about the step's start is the state anywhere inside it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -250,7 +165,9 @@ impl OrbitStep {
         let c = orbit_coefficients(mass, u, du);
         let size = tol * u.abs().max(du.abs());
         let bound = |n: usize| (size / c[n].abs()).min(1.0);
-        let h = shorter_root(bound(ORDER - 1), bound(ORDER)).min(MAX_STEP).min(h_max);
+        let h = shorter_root::<{ ORDER as i32 - 1 }, { ORDER as i32 }>(bound(ORDER - 1), bound(ORDER))
+            .min(MAX_STEP)
+            .min(h_max);
         Self { u: c, h }
     }
 
@@ -288,17 +205,6 @@ pub fn step(mass: f64, y: &[f64; 6], h_max: f64, tol: f64, floor: [f64; 2]) -> (
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn roots_are_close_to_libms() {
-        for k in 0..=1000 {
-            let x = 10f64.powf(-20.0 * f64::from(k) / 1000.0);
-            assert!((root::<9>(x) / x.powf(1.0 / 9.0) - 1.0).abs() < 2e-3, "{x}");
-            assert!((root::<10>(x) / x.powf(0.1) - 1.0).abs() < 2e-3, "{x}");
-        }
-        assert_eq!(root::<10>(0.0), 0.0);
-        assert_eq!(root::<10>(1.0), 1.0);
-    }
 
     #[test]
     fn without_mass_the_series_is_sine_and_cosine() {

@@ -23,6 +23,7 @@ pub mod plane_aim;
 pub mod rk4;
 mod start_table;
 pub mod tangent_triangle;
+mod taylor;
 
 pub use hamiltonian::{angular_momentum_z, energy, trace, Flow, HamiltonianStep, HamiltonianTracer, Ray};
 pub use interpolant::Interpolant;
@@ -61,7 +62,9 @@ pub struct State {
 pub enum Integrator {
     /// Classical RK4 with a fixed affine step `step` (further limited by the step cap).
     Rk4 { step: f64 },
-    /// Dormand–Prince 5(4) with error control at relative tolerance `rtol`.
+    /// Adaptive steps at relative tolerance `rtol`: Dormand–Prince 5(4) with error control, or
+    /// Taylor series whose truncation is held to it where a stepper takes them (the in-plane
+    /// orbit, [`plane`]; Kerr's family in Mino time, [`mino`]).
     Adaptive { rtol: f64 },
 }
 
