@@ -492,7 +492,7 @@ impl MinoTracer {
                 self.dy = step.end_derivative();
                 Dense::Rk4(step)
             }
-            Integrator::Adaptive { rtol } => self.taylor_step(cap, scale, rtol)?,
+            Integrator::Adaptive { rtol } => self.taylor_step(self.escape_cap(cap), scale, rtol)?,
         };
         // `dy` is RK4's (Taylor steps leave it as it was at the start).
         let y1 = dense.end();
@@ -502,6 +502,25 @@ impl MinoTracer {
         self.y = y1;
         self.steps += 1;
         Ok(MinoStep { constants, time: self.time, dense })
+    }
+
+    /// The cap `cap` of a Taylor step, lengthened for an outgoing ray (`u' < 0`) inside the
+    /// escape radius to the Mino time in which `u` falls to half its value there (`r` twice the
+    /// escape radius) were `u'` constant, as `u` nearly is far out (`u'' = U'(u)/2 = O(u)`),
+    /// within `max_step_fraction` of a turning time `1/|v|`. The step scale's fall to the pole
+    /// of `r` (the time `u/|u'|`) would make each step at most double `r` on the way out, which
+    /// with a distant escape radius (a camera far away sets it) is most of a ray's steps; a
+    /// Taylor step cannot pass the pole either way (it is halved while its end has `u ≤ 0`),
+    /// and its error control still bounds it.
+    fn escape_cap(&self, cap: f64) -> f64 {
+        let [u, w, _, _, _, v0, v1, v2] = self.y;
+        let escape_u = 1.0 / self.settings.escape_radius;
+        if !(w < 0.0 && u > escape_u) {
+            return cap;
+        }
+        let turning = 1.0 / (v0 * v0 + v1 * v1 + v2 * v2).sqrt();
+        let to_twice_escape = (u - 0.5 * escape_u) / -w;
+        cap.max(to_twice_escape.min(self.settings.max_step_fraction * turning))
     }
 
     /// The Taylor step from the current state, at most `cap` long (one step scale where the cap
@@ -706,6 +725,36 @@ mod tests {
             rays.extend([aim(inside * (1.0 - 1e-5)), aim(outside * (1.0 + 1e-5))]);
         }
         rays
+    }
+
+    /// A ray from a camera 10⁶ M away that passes the hole and escapes to twice that distance
+    /// leaves in a few strides past the hole, not in steps that each double `r` (16 of them from
+    /// 40 M to 2 × 10⁶ M), and along the 4-D tracer's direction (to 10⁻⁸ at tolerance 10⁻¹⁰).
+    #[test]
+    fn escaping_rays_stride_to_a_far_escape_radius() {
+        let hole = KerrNewman::new(1.0, 0.9, 0.0);
+        let (d, inclination) = (1e6, 80f64.to_radians());
+        let at = [d * inclination.sin(), 0.0, d * inclination.cos()];
+        for b in [8.0, 10.0, 15.0] {
+            let start = camera_ray(&hole, at, [-inclination.sin(), b / d, -inclination.cos()]);
+            let mut outside = 0;
+            MinoTracer::new(&hole, start, settings(1e-7, 2.0 * d)).run(|step| {
+                let p = step.end_position();
+                outside += usize::from(p[1] * p[1] + p[2] * p[2] + p[3] * p[3] > 1600.0);
+                Visit::Continue
+            });
+            // The first step comes in from 10⁶ M; beyond 40 M on the way out, at most 7 (at the
+            // renderer's tolerance).
+            assert!(outside <= 8, "b = {b}: {outside} steps end beyond 40 M");
+            let s = settings(1e-10, 2.0 * d);
+            let mino = MinoTracer::new(&hole, start, s).run(|_| Visit::Continue);
+            let ham = HamiltonianTracer::new(&hole, start, s).run(|_| Visit::Continue);
+            let (Fate::Escaped { direction: a }, Fate::Escaped { direction: b4 }) = (mino.fate, ham.fate) else {
+                panic!("b = {b}: {:?} vs {:?}", mino.fate, ham.fate);
+            };
+            let miss = (0..3).map(|i| (a[i] - b4[i]).abs()).fold(0.0, f64::max);
+            assert!(miss < 1e-8, "b = {b}: directions differ by {miss}");
+        }
     }
 
     #[test]
