@@ -505,9 +505,9 @@ impl MinoTracer {
     }
 
     /// The cap `cap` of a Taylor step, lengthened for an outgoing ray (`u' < 0`) inside the
-    /// escape radius to the Mino time in which `u` falls to half its value there (`r` twice the
-    /// escape radius) were `u'` constant, as `u` nearly is far out (`u'' = U'(u)/2 = O(u)`),
-    /// within `max_step_fraction` of a turning time `1/|v|`. The step scale's fall to the pole
+    /// escape radius to the Mino time in which `u`, at constant `u'` (as it nearly is far out:
+    /// `u'' = U'(u)/2 = O(u)`), would fall to half its value at the escape radius (`r` twice
+    /// that radius), within `max_step_fraction` of a turning time `1/|v|`. The step scale's fall to the pole
     /// of `r` (the time `u/|u'|`) would make each step at most double `r` on the way out, which
     /// with a distant escape radius (a camera far away sets it) is most of a ray's steps; a
     /// Taylor step cannot pass the pole either way (it is halved while its end has `u ≤ 0`),
