@@ -82,10 +82,17 @@ struct Constants {
 }
 
 impl Constants {
+    /// Whether `G` is taken as `K u²/(A − u')` at `u'` and `A = E + b u²` (where `r'` has the
+    /// sign of `P`, as on the past horizon that backward rays cross), not as `(A + u')/D`.
+    #[inline]
+    fn g_by_quotient_of_k(w: f64, big_a: f64) -> bool {
+        big_a * w < 0.0
+    }
+
     /// `G = (P − r')/Δ` from `u`, `u'` and `A = E + b u²`, regular on the past horizon.
     #[inline]
     fn g(&self, u: f64, w: f64, big_a: f64) -> f64 {
-        if big_a * w < 0.0 {
+        if Self::g_by_quotient_of_k(w, big_a) {
             self.carter_k * u * u / (big_a - w)
         } else {
             (big_a + w) / (1.0 + u * (self.c * u - 2.0 * self.mass))
@@ -193,9 +200,8 @@ fn from_chart(hole: &KerrNewman, start: &State) -> (Constants, [f64; 8]) {
 /// Order of the Taylor series a step takes (coefficients `0..=ORDER`). Jorba & Zou's optimum
 /// is about `−ln(tol)/2`, 8 at the renderer's tolerance of 10⁻⁷, but the steps are also capped
 /// (`max_step_fraction` of [`MinoTracer::step_scale`]), and a higher order lets more of them
-/// reach the cap: on `nullpath bench disk --size 256` (tolerance 10⁻⁷) orders 7, 8, 9, 10, 12
-/// take 17.3, 11.6, 8.9, 7.6, 7.3 steps a ray (10: 70 % of them capped, 12: all but 1 %), and
-/// 9 and 12 take 1.03 and 1.14 times the CPU time of 10.
+/// reach the cap, until the extra coefficients cost more than the steps they save (the orders
+/// measured against one another: docs/perf-journal.md, session 35).
 const ORDER: usize = 10;
 
 /// `1/(k + 1)`, the recurrence's divisors as factors.
@@ -256,11 +262,12 @@ impl Recurrence {
     fn new(c: &Constants, y: &[f64; 8]) -> Self {
         let (m, e, kc, b) = (c.mass, c.energy, c.carter_k, c.b);
         let radial = [2.0 * b * e - kc, 3.0 * m * kc, 2.0 * b * b - 2.0 * c.c * kc];
-        let past = (e + b * y[0] * y[0]) * y[1] < 0.0;
-        // G = K u²/(A − u') where the ray crosses the past horizon, else (A + u')/D, with
-        // A = E + b u² and D = 1 − 2Mu + c u².
-        let (num_of, den_of) =
-            if past { ([0.0, 0.0, kc, 0.0], [e, 0.0, b, -1.0]) } else { ([e, 0.0, b, 1.0], [1.0, -2.0 * m, c.c, 0.0]) };
+        // G = K u²/(A − u') or (A + u')/D, with A = E + b u² and D = 1 − 2Mu + c u².
+        let (num_of, den_of) = if Constants::g_by_quotient_of_k(y[1], e + b * y[0] * y[0]) {
+            ([0.0, 0.0, kc, 0.0], [e, 0.0, b, -1.0])
+        } else {
+            ([e, 0.0, b, 1.0], [1.0, -2.0 * m, c.c, 0.0])
+        };
         let mut r = Recurrence {
             y: [[0.0; ORDER + 1]; 8],
             u2: [0.0; ORDER],
@@ -507,11 +514,11 @@ impl MinoTracer {
     /// The cap `cap` of a Taylor step, lengthened for an outgoing ray (`u' < 0`) inside the
     /// escape radius to the Mino time in which `u`, at constant `u'` (as it nearly is far out:
     /// `u'' = U'(u)/2 = O(u)`), would fall to half its value at the escape radius (`r` twice
-    /// that radius), within `max_step_fraction` of a turning time `1/|v|`. The step scale's fall to the pole
-    /// of `r` (the time `u/|u'|`) would make each step at most double `r` on the way out, which
-    /// with a distant escape radius (a camera far away sets it) is most of a ray's steps; a
-    /// Taylor step cannot pass the pole either way (it is halved while its end has `u ≤ 0`),
-    /// and its error control still bounds it.
+    /// that radius), within `max_step_fraction` of a turning time `1/|v|`. The step scale's
+    /// fall to the pole of `r` (the time `u/|u'|`) would make each step at most double `r` on
+    /// the way out, which with a distant escape radius (a camera far away sets it) is most of a
+    /// ray's steps; a Taylor step cannot pass the pole either way (it is halved while its end
+    /// has `u ≤ 0`), and its error control still bounds it.
     fn escape_cap(&self, cap: f64) -> f64 {
         let [u, w, _, _, _, v0, v1, v2] = self.y;
         let escape_u = 1.0 / self.settings.escape_radius;

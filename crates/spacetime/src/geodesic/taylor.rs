@@ -47,10 +47,11 @@ pub(super) fn shorter_root<const B: i32, const L: i32>(before: f64, last: f64) -
     }
 }
 
-/// `x^(1/N)` for `x ∈ [0, 1]` to within 2·10⁻³ relative, all a step length needs (a step that
-/// much too long raises the truncation term by 2 %): the exponent divided by `N` in the bits of
-/// `x` (within 6 %), then one step of Halley's method for `yᴺ = x`, which triples the digits.
-/// libm's `powf` cost 8 % of a connection.
+/// `x^(1/N)` for `x ∈ [0, 1]` to within 2·10⁻³ relative, all a step length needs (the
+/// truncation term grows as `hᴺ`, so its bound moves by `N` times that): the exponent divided
+/// by `N` in the bits of `x` as a first guess, then one step of Halley's method for `yᴺ = x`,
+/// which triples its digits. It stands in for libm's `powf`, which was a noticeable share of a
+/// connection (docs/perf-journal.md).
 fn root<const N: i32>(x: f64) -> f64 {
     if !(x > f64::MIN_POSITIVE) {
         return 0.0;
@@ -70,7 +71,7 @@ pub(super) fn value_and_slope<const N: usize>(c: &[f64; N], h: f64) -> (f64, f64
 /// A polynomial at `h` by Horner's rule in `h²` on its even and odd coefficients apart,
 /// `E(h²) + h O(h²)` (second-order Horner): two independent chains half as long as Horner's in
 /// `h`, whose dependent multiply–adds, not their count, are what a step's points wait for
-/// (with [`slope`], −9 % time on the curved room, docs/perf-journal.md, session 17).
+/// (measured with [`slope`]: docs/perf-journal.md, session 17).
 #[inline]
 pub(super) fn value<const N: usize>(c: &[f64; N], h: f64) -> f64 {
     let z = h * h;
