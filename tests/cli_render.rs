@@ -169,6 +169,38 @@ fn data_channels_go_into_the_exr_beside_the_colour() {
     let out = nullpath().args(["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap()]).output().unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("only an .exr image holds"));
+    // --data-only writes the same channels, bit for bit, and no colour.
+    let data = temp("disk-data-only.exr");
+    let stats = temp("disk-data-only.json");
+    let status = nullpath()
+        .args(["render", scene.to_str().unwrap(), "-o", data.to_str().unwrap(), "--data-only", "--quiet"])
+        .args(["--stats", stats.to_str().unwrap()])
+        .status();
+    assert!(status.unwrap().success());
+    let only = exr::prelude::read_all_flat_layers_from_file(&data).unwrap();
+    let bits = |c: &exr::prelude::AnyChannel<exr::prelude::FlatSamples>| {
+        (c.name.to_string(), c.sample_data.values_as_f32().map(f32::to_bits).collect::<Vec<u32>>())
+    };
+    let is_colour = |(name, _): &(String, Vec<u32>)| ["R", "G", "B"].contains(&name.as_str());
+    let beside_colour: Vec<_> = channels.iter().map(bits).filter(|c| !is_colour(c)).collect();
+    assert_eq!(only.layer_data[0].channel_data.list.iter().map(bits).collect::<Vec<_>>(), beside_colour);
+    let stats: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(stats["rays"], 81);
+    assert_eq!(stats["fates"]["captured"], fate.iter().filter(|&&f| f == 4.0).count());
+    assert_eq!(stats["fates"]["emitter"], on_disk.len());
+    // It refuses what it cannot honour: a PNG, a sample count, parts, a scene without channels.
+    let refused = |extra: &[&str], scene: &str, expected: &str| {
+        let out = nullpath().args(["render", scene, "--data-only"]).args(extra).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(!out.status.success() && stderr.contains(expected), "{extra:?}: {stderr}");
+    };
+    let scene = scene.to_str().unwrap();
+    refused(&["-o", png.to_str().unwrap()], scene, "only an .exr image holds");
+    refused(&["-o", data.to_str().unwrap(), "--spp", "4"], scene, "--spp does not apply to --data-only");
+    refused(&["-o", data.to_str().unwrap(), "--part", "1/2"], scene, "cannot be used with");
+    let plain = temp("disk-no-data.toml");
+    std::fs::write(&plain, "[camera]\nposition = [0, 0, 10]\nlook_at = [0, 0, 0]\n").unwrap();
+    refused(&["-o", data.to_str().unwrap()], plain.to_str().unwrap(), "the scene asks for none");
 }
 
 #[test]

@@ -67,8 +67,9 @@ fn settings_json(scene: &Scene) -> serde_json::Value {
     })
 }
 
-/// The metadata of a render of `scene` from `source`, as it stands after `stats`.
-pub fn metadata(scene: &Scene, source: &Source, goal: Goal, part: Part, stats: &RenderStats) -> Metadata {
+/// What any image made from `scene` records: the program, the command, the scene and its
+/// view, time and settings.
+pub fn scene_metadata(scene: &Scene, source: &Source) -> Metadata {
     let mut m = Metadata::new();
     let mut put = |key: &str, value: String| {
         m.insert(key.to_owned(), value);
@@ -84,6 +85,15 @@ pub fn metadata(scene: &Scene, source: &Source, goal: Goal, part: Part, stats: &
     put("sampling.hash", sampling_hash(scene));
     put("settings", settings_json(scene).to_string());
     put("seed", scene.settings.seed.to_string());
+    m
+}
+
+/// The metadata of a render of `scene` from `source`, as it stands after `stats`.
+pub fn metadata(scene: &Scene, source: &Source, goal: Goal, part: Part, stats: &RenderStats) -> Metadata {
+    let mut m = scene_metadata(scene, source);
+    let mut put = |key: &str, value: String| {
+        m.insert(key.to_owned(), value);
+    };
     put("spp", stats.spp_max.to_string());
     put("spp.min", stats.spp_min.to_string());
     put("spp.goal", goal.spp.to_string());

@@ -8,7 +8,7 @@ use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use progressive::{PathRender, Progressive};
 use render::film::{
-    check_output_path, check_writable, read_checkpoint, write_image_with_data, Film, ImageFormat, Metadata,
+    check_output_path, check_writable, read_checkpoint, write_image_with_data, DataLayer, Film, ImageFormat, Metadata,
 };
 use render::integrator::photon::{PhotonRenderer, SppmResume, SppmState};
 use render::integrator::PathStats;
@@ -21,6 +21,7 @@ use std::sync::atomic::AtomicBool;
 use std::sync::{Condvar, Mutex};
 use std::time::{Duration, Instant};
 
+mod data_only;
 mod progressive;
 
 /// The scene rendered when none is named.
@@ -87,6 +88,11 @@ pub struct Args {
     /// (.exr); `nullpath merge` puts the parts together, bit-identical to one render.
     #[arg(long, value_name = "I/N", value_parser = Part::parse)]
     part: Option<Part>,
+    /// Write only the data channels (the scene's `[render] channels` and `spectrum`) into OUTPUT
+    /// (.exr), without the image: one ray through each pixel's centre, the same values a full
+    /// render writes beside its colour, at the cost of one ray a pixel.
+    #[arg(long, conflicts_with_all = ["part", "resume", "checkpoint", "checkpoint_every", "time_limit", "noise_target"])]
+    data_only: bool,
 }
 
 /// `90s`, `30m`, `2h`, `1h30m` or plain seconds.
@@ -137,6 +143,16 @@ pub struct RenderOptions {
     /// No progress bar or summary.
     #[arg(long)]
     pub quiet: bool,
+}
+
+/// `bytes` in GiB, or MiB below one GiB.
+fn human_bytes(bytes: u64) -> String {
+    let mib = bytes as f64 / f64::from(1u32 << 20);
+    if mib < 1024.0 {
+        format!("{mib:.1} MiB")
+    } else {
+        format!("{:.1} GiB", mib / 1024.0)
+    }
 }
 
 /// `8G`, `512M`, `100k` or plain bytes (binary multiples).
@@ -222,11 +238,19 @@ impl RenderOptions {
             .map_err(|e| format!("--threads: {e}"))
     }
 
-    /// Refuses a render whose film (and, with `checkpoints`, its checkpoint encoding) would not
-    /// fit in `--max-memory`, or in the memory available now.
-    pub fn check_memory(&self, scene: &Scene, checkpoints: bool) -> Result<(), String> {
-        let pixels = u64::from(scene.settings.width) * u64::from(scene.settings.height);
-        let per_pixel = Film::BYTES_PER_PIXEL + 4 + 3 + if checkpoints { CHECKPOINT_BYTES_PER_PIXEL } else { 0 };
+    /// Refuses a render whose data channels and, `with_film`, film and checkpoint encoding would
+    /// not fit in `--max-memory`, or in the memory available now.
+    pub fn check_memory(&self, scene: &Scene, with_film: bool) -> Result<(), String> {
+        let settings = &scene.settings;
+        let pixels = u64::from(settings.width) * u64::from(settings.height);
+        let wavelengths = settings.spectrum.map_or(0, |s| s.wavelengths().len());
+        let data = if settings.has_data_channels() {
+            DataLayer::bytes_per_pixel(settings.channels.len(), wavelengths)
+        } else {
+            0
+        };
+        let film = Film::BYTES_PER_PIXEL + 4 + 3 + CHECKPOINT_BYTES_PER_PIXEL;
+        let per_pixel = data + if with_film { film } else { 0 };
         let needed = pixels * per_pixel;
         let (limit, what) = match self.max_memory {
             Some(limit) => (limit, "--max-memory"),
@@ -236,14 +260,13 @@ impl RenderOptions {
             },
         };
         if needed > limit {
-            let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
             return Err(format!(
-                "a {}x{} render needs about {:.1} GiB ({per_pixel} bytes a pixel), more than {what} ({:.1} GiB): \
+                "a {}x{} render needs about {} ({per_pixel} bytes a pixel), more than {what} ({}): \
                  render a smaller image, or raise --max-memory if more memory will be free",
-                scene.settings.width,
-                scene.settings.height,
-                gib(needed),
-                gib(limit)
+                settings.width,
+                settings.height,
+                human_bytes(needed),
+                human_bytes(limit)
             ));
         }
         Ok(())
@@ -366,7 +389,12 @@ fn check_stats_path(path: &Path) -> Result<(), String> {
 }
 
 fn write_stats(path: &Path, stats: &RenderStats, scene: &Scene) -> Result<(), String> {
-    let text = serde_json::to_string_pretty(&stats_json(stats, scene)).map_err(|e| e.to_string())?;
+    write_json(path, &stats_json(stats, scene))
+}
+
+/// Writes the statistics `value` to `path` as pretty JSON.
+fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), String> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
     std::fs::write(path, text + "\n").map_err(|e| format!("{}: cannot write statistics: {e}", path.display()))
 }
 
@@ -393,6 +421,9 @@ pub fn run(args: &Args) -> Result<(), Failure> {
     }
     scene.set_time(args.time)?;
     let source = args.options.source(args.scene.as_deref(), args.time);
+    if args.data_only {
+        return Ok(data_only::run(args, &scene, &source)?);
+    }
     let part = args.part.unwrap_or(Part::WHOLE);
     let goal = args.goal(&scene)?;
     let photon = scene.settings.integrator == IntegratorKind::Photon;

@@ -44,6 +44,24 @@ pub enum FirstMet {
     Failed = 5,
 }
 
+impl FirstMet {
+    /// Every fate, in the order of their values.
+    pub const ALL: [FirstMet; 6] =
+        [FirstMet::Surface, FirstMet::Emitter, FirstMet::Sky, FirstMet::OtherSky, FirstMet::Captured, FirstMet::Failed];
+
+    /// The fate's name in summaries and statistics.
+    pub fn name(self) -> &'static str {
+        match self {
+            FirstMet::Surface => "surface",
+            FirstMet::Emitter => "emitter",
+            FirstMet::Sky => "sky",
+            FirstMet::OtherSky => "other_sky",
+            FirstMet::Captured => "captured",
+            FirstMet::Failed => "failed",
+        }
+    }
+}
+
 /// One pixel's data.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PixelData {
@@ -79,6 +97,22 @@ impl DataLayer {
     /// The values of `channel`, row-major.
     pub fn samples(&self, channel: DataChannel) -> Vec<f32> {
         self.pixels.iter().map(|p| p.value(channel)).collect()
+    }
+
+    /// Memory a pixel's data takes from tracing to writing, with `channels` data channels and
+    /// `wavelengths` spectral ones: its record, its spectrum (twice while the pixels' spectra are
+    /// joined) and each channel's copy for the encoder.
+    pub fn bytes_per_pixel(channels: usize, wavelengths: usize) -> u64 {
+        (std::mem::size_of::<PixelData>() + 4 * channels + 12 * wavelengths) as u64
+    }
+
+    /// How many pixels' rays met each fate, indexed by [`FirstMet`]'s value.
+    pub fn fate_counts(&self) -> [u64; FirstMet::ALL.len()] {
+        let mut counts = [0; FirstMet::ALL.len()];
+        for pixel in &self.pixels {
+            counts[pixel.fate as usize] += 1;
+        }
+        counts
     }
 
     /// Every pixel's spectral radiance at the `k`-th wavelength.

@@ -188,6 +188,55 @@ pub fn write_image_with_data(
     write_atomically(path, |temporary| write_to((film, data), temporary, format, tonemap, metadata))
 }
 
+/// Writes only `data`'s channels, no colour, to the OpenEXR file `path`, with `metadata`: the
+/// maps of redshift and ray fates a physicist compares with other codes, made without rendering
+/// the image (`nullpath render --data-only`).
+pub fn write_data_image(data: &DataLayer, path: &Path, metadata: &Metadata) -> Result<(), ImageWriteError> {
+    if check_output_path(path)? != ImageFormat::Exr {
+        return Err(ImageWriteError::DataNeedsExr { path: path.to_owned() });
+    }
+    if data.width == 0 || data.height == 0 {
+        return Err(ImageWriteError::EmptyImage { path: path.to_owned() });
+    }
+    write_atomically(path, |temporary| {
+        let io_error = |source| ImageWriteError::Io { path: temporary.to_owned(), source };
+        let mut writer = BufWriter::new(File::create(temporary).map_err(io_error)?);
+        encode_exr_channels(data_channels(data).collect(), (data.width, data.height), metadata, &mut writer).map_err(
+            |source| ImageWriteError::Encode { path: temporary.to_owned(), format: ImageFormat::Exr, source },
+        )?;
+        writer.flush().map_err(io_error)?;
+        writer.get_ref().sync_all().map_err(io_error)
+    })
+}
+
+/// `layer`'s data channels and then its spectral channels, as EXR channels.
+fn data_channels(layer: &DataLayer) -> impl Iterator<Item = exr::prelude::AnyChannel<exr::prelude::FlatSamples>> + '_ {
+    use exr::prelude::{AnyChannel, FlatSamples};
+    let data =
+        layer.channels.iter().map(|&channel| AnyChannel::new(channel.name(), FlatSamples::F32(layer.samples(channel))));
+    let spectra = layer.wavelengths.iter().enumerate().map(|(k, &lambda)| {
+        AnyChannel::new(
+            super::data::SpectrumChannels::name(lambda).as_str(),
+            FlatSamples::F32(layer.spectral_samples(k)),
+        )
+    });
+    data.chain(spectra)
+}
+
+/// Encodes `channels` of an image of `size` pixels, with `metadata`, as a lossless OpenEXR file.
+fn encode_exr_channels(
+    channels: Vec<exr::prelude::AnyChannel<exr::prelude::FlatSamples>>,
+    (width, height): (u32, u32),
+    metadata: &Metadata,
+    writer: &mut BufWriter<File>,
+) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
+    use exr::prelude::{AnyChannels, Encoding, Image, WritableImage as _};
+    let mut image = Image::from_channels((width as usize, height as usize), AnyChannels::sort(channels.into()));
+    image.layer_data.encoding = Encoding::SMALL_LOSSLESS;
+    image.layer_data.attributes.other.extend(exr_attributes(metadata));
+    image.write().to_buffered(writer).map_err(|e| Box::new(e) as _)
+}
+
 /// Runs `write` on a temporary sibling of `path` and renames it into place; on failure the
 /// temporary is removed and the error names `path`. Stale temporaries of `path` left by killed
 /// processes are removed first.
@@ -292,27 +341,14 @@ fn write_to(
                 .map_err(|e| encode_error(Box::new(e)))?;
         }
         ImageFormat::Exr if data.is_some() => {
-            use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Image, WritableImage as _};
+            use exr::prelude::{AnyChannel, FlatSamples};
             let colour: [Vec<f32>; 3] = std::array::from_fn(|c| {
                 film.bounds().pixels().map(|(x, y)| (film.pixel_f64(x, y)[c] * scale) as f32).collect()
             });
             let [r, g, b] = colour.map(FlatSamples::F32);
-            let mut channels: Vec<AnyChannel<FlatSamples>> =
-                vec![AnyChannel::new("R", r), AnyChannel::new("G", g), AnyChannel::new("B", b)];
-            for layer in data.into_iter() {
-                for &channel in &layer.channels {
-                    channels.push(AnyChannel::new(channel.name(), FlatSamples::F32(layer.samples(channel))));
-                }
-                for (k, &lambda) in layer.wavelengths.iter().enumerate() {
-                    let name = super::data::SpectrumChannels::name(lambda);
-                    channels.push(AnyChannel::new(name.as_str(), FlatSamples::F32(layer.spectral_samples(k))));
-                }
-            }
-            let size = (width as usize, height as usize);
-            let mut image = Image::from_channels(size, AnyChannels::sort(channels.into()));
-            image.layer_data.encoding = Encoding::SMALL_LOSSLESS;
-            image.layer_data.attributes.other.extend(exr_attributes(metadata));
-            image.write().to_buffered(&mut writer).map_err(|e| encode_error(Box::new(e)))?;
+            let mut channels = vec![AnyChannel::new("R", r), AnyChannel::new("G", g), AnyChannel::new("B", b)];
+            channels.extend(data.into_iter().flat_map(data_channels));
+            encode_exr_channels(channels, (width, height), metadata, &mut writer).map_err(encode_error)?;
         }
         ImageFormat::Exr => {
             use exr::prelude::{Encoding, Image, SpecificChannels, Vec2, WritableImage as _};
