@@ -21,30 +21,38 @@ const T_MAX: f64 = 1e8;
 /// Entries, even in `ln T`.
 const ENTRIES: usize = 8192;
 
+/// Colour over luminance, and `ln Y`, of one temperature.
+type Entry = ([f64; 3], f64);
+
 /// Linear Rec. 709 of `B_λ(T)` (W sr⁻¹ m⁻² nm⁻¹, weighted as [`cie::xyz_quadrature`]).
+///
+/// Each entry is computed the first time it is read: a quadrature per entry makes the whole
+/// table costlier than a small render's rays, and a scene reads few of them (a disk's
+/// temperatures span a few hundred entries).
 #[derive(Debug)]
 pub struct BlackbodyColours {
     /// Colour over luminance, and `ln Y`, at `T_MIN e^{k·step}`.
-    entries: Vec<([f64; 3], f64)>,
+    entries: Vec<OnceLock<Entry>>,
     step: f64,
 }
 
 impl BlackbodyColours {
-    /// The table, computed once per process: it depends on nothing but constants of nature and
-    /// the CIE observer.
+    /// The table, one per process: it depends on nothing but constants of nature and the CIE
+    /// observer.
     pub fn get() -> &'static BlackbodyColours {
         static TABLE: OnceLock<BlackbodyColours> = OnceLock::new();
-        TABLE.get_or_init(|| {
-            let step = (T_MAX / T_MIN).ln() / (ENTRIES - 1) as f64;
-            let entries = (0..ENTRIES)
-                .map(|k| {
-                    let t = T_MIN * (k as f64 * step).exp();
-                    let xyz = cie::xyz_quadrature(&Blackbody::new(t).expect("tabulated temperatures are positive"));
-                    let rgb = xyz_to_linear_srgb(xyz) / xyz.y;
-                    (rgb.to_array(), xyz.y.ln())
-                })
-                .collect();
-            BlackbodyColours { entries, step }
+        TABLE.get_or_init(|| BlackbodyColours {
+            entries: (0..ENTRIES).map(|_| OnceLock::new()).collect(),
+            step: (T_MAX / T_MIN).ln() / (ENTRIES - 1) as f64,
+        })
+    }
+
+    /// Entry `k`, computed on first use.
+    fn entry(&self, k: usize) -> Entry {
+        *self.entries[k].get_or_init(|| {
+            let t = T_MIN * (k as f64 * self.step).exp();
+            let xyz = cie::xyz_quadrature(&Blackbody::new(t).expect("tabulated temperatures are positive"));
+            ((xyz_to_linear_srgb(xyz) / xyz.y).to_array(), xyz.y.ln())
         })
     }
 
@@ -54,13 +62,13 @@ impl BlackbodyColours {
             return ([0.0; 3], 0.0);
         }
         if temperature >= T_MAX {
-            let (colour, ln_y) = self.entries[ENTRIES - 1];
+            let (colour, ln_y) = self.entry(ENTRIES - 1);
             return (colour.map(|c| c * ln_y.exp() * temperature / T_MAX), ln_y.exp() * temperature / T_MAX);
         }
         let x = (temperature / T_MIN).ln() / self.step;
         let k = (x as usize).min(ENTRIES - 2);
         let f = x - k as f64;
-        let ((c0, y0), (c1, y1)) = (self.entries[k], self.entries[k + 1]);
+        let ((c0, y0), (c1, y1)) = (self.entry(k), self.entry(k + 1));
         let y = (y0 + f * (y1 - y0)).exp();
         (std::array::from_fn(|i| (c0[i] + f * (c1[i] - c0[i])) * y), y)
     }
