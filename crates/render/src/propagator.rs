@@ -171,12 +171,20 @@ impl Propagator {
 
     /// World vector `v` in the chart's axes.
     fn to_chart(&self, v: Vec3) -> Vec3 {
-        self.to_chart.map_or(v, |q| q * v)
+        self.rotation().map_or(v, |q| q * v)
     }
 
     /// Chart vector `v` in the world's axes.
     fn to_world(&self, v: Vec3) -> Vec3 {
-        self.to_chart.map_or(v, |q| q.inverse() * v)
+        self.rotation().map_or(v, |q| q.inverse() * v)
+    }
+
+    /// The rotation between world and chart axes where it turns anything: a spin along the
+    /// world's z (the chart's own axis, [`chart_rotation`] exactly the identity) leaves the
+    /// points of every step as they are, without a rotation on each one's chain.
+    #[inline]
+    fn rotation(&self) -> Option<glam::DQuat> {
+        self.to_chart.filter(|&q| q != glam::DQuat::IDENTITY)
     }
 
     /// Chord tolerance ε, in scene units: 10⁻⁴ of the scene's radius.
@@ -485,11 +493,13 @@ impl Propagator {
             }
         }
         let m = (step.knot)(0.5 * (a.theta + b.theta));
-        let sagitta = (m.at - 0.5 * (a.at + b.at)).length();
-        if sagitta > self.epsilon && depth < 24 {
+        // Compared squared: only the tube's reach needs the sagitta itself, and a piece that
+        // ends here (its chord tested) would otherwise wait on a square root first.
+        let offset = m.at - 0.5 * (a.at + b.at);
+        if offset.length_squared() > self.epsilon * self.epsilon && depth < 24 {
             if triangle.is_none() {
                 // The curve stays within about one sagitta of its chord (twice, to be safe).
-                let reach = Vec3::splat(2.0 * sagitta + self.epsilon);
+                let reach = Vec3::splat(2.0 * offset.length() + self.epsilon);
                 let tube =
                     crate::geometry::Aabb::new(a.at.min(b.at).min(m.at) - reach, a.at.max(b.at).max(m.at) + reach);
                 if !world.any_near(region, &tube) {
