@@ -34,7 +34,7 @@ use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep
 use spacetime::geodesic::tangent_triangle::tangent_triangle;
 use spacetime::geodesic::{HamiltonianTracer, Integrator, RayStep, RayTracer, State, TraceSettings};
 use spacetime::metric::{LocalFrame, Metric, OwnStepper, Tracers};
-use spacetime::tensor::Vector4;
+use spacetime::tensor::{Matrix4, Vector4};
 use spacetime::{Fate, Region, Spacetime, Tetrad, Visit};
 
 /// Where a traced ray ended.
@@ -104,6 +104,20 @@ pub struct Propagator {
     /// chart's z; a scene may point the spin anywhere); `None` for spherically symmetric ones,
     /// whose world points are the chart's as they are.
     to_chart: Option<glam::DQuat>,
+    /// The start of every ray from one point (a pinhole camera's), worked out once.
+    camera: Option<OriginFrame>,
+}
+
+/// A point rays leave from, in the chart, with its local observer's frame and the metric there:
+/// what [`Propagator::start`] works out for each ray (the frame by an eigen-decomposition of the
+/// spatial metric), kept for the one point all of a pinhole camera's rays leave.
+#[derive(Clone, Copy, Debug)]
+struct OriginFrame {
+    region: Region,
+    origin: Vec3,
+    x: Vector4,
+    frame: Tetrad,
+    metric: Matrix4,
 }
 
 /// The rotation from world axes to the chart's for a spacetime whose symmetry axis points along
@@ -150,7 +164,21 @@ impl Propagator {
             intersection,
             bound_arcs: true,
             to_chart,
+            camera: None,
         }
+    }
+
+    /// Works out once the start of the rays that leave world point `origin` of `region` (a
+    /// pinhole camera's position), which [`Propagator::start`] would for each; nothing where
+    /// rays do not start there in a 4-D chart or no local observer exists. The frame is the
+    /// spacetime's own metric's, the one every tracer it chooses is handed.
+    pub fn with_camera(mut self, region: Region, origin: Vec3) -> Self {
+        let metric = self.spacetime.metric();
+        self.camera = metric.world_to_chart(region, self.to_chart(origin).to_array(), 0.0).and_then(|x| {
+            let frame = Tetrad::local_observer(metric, &x).ok()?;
+            Some(OriginFrame { region, origin, x, frame, metric: metric.metric(&x) })
+        });
+        self
     }
 
     /// Points the spacetime's symmetry axis (a Kerr hole's spin) along the world vector `axis`
@@ -159,7 +187,10 @@ impl Propagator {
         if self.to_chart.is_some() {
             self.to_chart = Some(chart_rotation(axis));
         }
-        self
+        match self.camera {
+            Some(c) => self.with_camera(c.region, c.origin),
+            None => self,
+        }
     }
 
     /// Sets the chord tolerance ε to 10⁻⁴ of `radius` (the objects' extent) rather than of the
@@ -620,6 +651,10 @@ impl Propagator {
     /// `direction` as a state of `metric`'s chart (world vectors rotated in with `to_chart`), or
     /// how it ends at once: failed off the chart, captured where no local observer exists.
     fn start<M: Metric>(&self, metric: &M, region: Region, origin: Vec3, direction: Vec3) -> Result<State, NoStart> {
+        if let Some(c) = self.camera.filter(|c| c.region == region && c.origin == origin) {
+            let p = c.frame.backward_momentum(&c.metric, self.to_chart(direction).to_array(), 1.0);
+            return Ok(State { x: c.x, p });
+        }
         let Some(x) = metric.world_to_chart(region, self.to_chart(origin).to_array(), 0.0) else {
             return Err(NoStart(Box::new(RayEnd::Failed)));
         };
@@ -982,6 +1017,28 @@ mod tests {
         let arc = |angle: f64| Vec3::new(angle.cos(), angle.sin(), 0.0);
         let offset = sagitta_offset(arc(-0.5), arc(0.0), arc(0.5));
         assert!((offset - Vec3::new(1.0 - 0.5f64.cos(), 0.0, 0.0)).length() < 1e-15, "{offset}");
+    }
+
+    /// Rays from the camera's point start as they would without its frame worked out once, in a
+    /// spin's turned chart too.
+    #[test]
+    fn rays_from_the_camera_start_as_without_it() {
+        let hole = Spacetime::Kerr(spacetime::Kerr::new(1.0, 0.9));
+        let origin = Vec3::new(30.0, 2.0, 8.0);
+        let axis = Vec3::new(0.0, 1.0, 0.2);
+        let plain = Propagator::new(hole.clone(), 40.0, 1e-7, Intersection::Chord).with_axis(axis);
+        let camera = plain.clone().with_camera(Region::Upper, origin);
+        // Turned after the camera's frame was worked out: worked out again.
+        let turned =
+            Propagator::new(hole, 40.0, 1e-7, Intersection::Chord).with_camera(Region::Upper, origin).with_axis(axis);
+        assert!(camera.camera.is_some());
+        let Spacetime::Kerr(metric) = &camera.spacetime else { unreachable!() };
+        for direction in [Vec3::X, Vec3::new(-1.0, 0.3, -0.2).normalize()] {
+            let start = |p: &Propagator| p.start(metric, Region::Upper, origin, direction).ok().map(|s| (s.x, s.p));
+            assert!(start(&plain).is_some());
+            assert_eq!(start(&camera), start(&plain));
+            assert_eq!(start(&turned), start(&plain));
+        }
     }
 
     /// A speck at the centre, inside the horizon: no ray reaches it, but it takes the empty ball
