@@ -170,7 +170,8 @@ pub fn propagator(scene: &Scene) -> Propagator {
         scene.settings.geodesic_rtol,
         scene.settings.intersection,
     )
-    .with_axis(scene.axis);
+    .with_axis(scene.axis)
+    .with_camera(scene.camera.region, scene.camera.position);
     let propagator = if objects > 0.0 { propagator.with_chord_scale(objects) } else { propagator };
     match scene.settings.connector {
         Connector::Auto => propagator,

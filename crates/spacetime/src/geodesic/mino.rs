@@ -587,14 +587,15 @@ impl RayTracer for MinoTracer {
             if let Some(fate) = self.ended() {
                 break fate;
             }
-            match self.step() {
+            // Seen where it was returned: a step (its series) is too large to move for nothing.
+            match &self.step() {
                 Ok(step) => {
                     max_h = max_h.max(self.constants.momentum(&self.y).1.abs());
-                    if visit(&step) == Visit::Stop {
+                    if visit(step) == Visit::Stop {
                         break Fate::Stopped;
                     }
                 }
-                Err(failure) => break Fate::Failed(failure),
+                Err(failure) => break Fate::Failed(*failure),
             }
         };
         Trace { fate, steps: self.steps, max_abs_hamiltonian: max_h, end: self.state() }
