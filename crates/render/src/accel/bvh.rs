@@ -269,6 +269,9 @@ impl Bvh {
         }
         let inv_dir = ray.dir.recip();
         let dir_is_neg = [inv_dir.x < 0.0, inv_dir.y < 0.0, inv_dir.z < 0.0];
+        // The same signs as bits, for the split axis read from each node: indexing the array by
+        // it would keep the array in memory, and reading it back packed stalls store forwarding.
+        let neg_bits = dir_is_neg.iter().enumerate().fold(0u32, |bits, (k, &neg)| bits | u32::from(neg) << k);
         let mut stack = [0u32; STACK];
         let mut top = 0;
         let mut node = 0usize;
@@ -282,7 +285,7 @@ impl Bvh {
                     }
                 } else {
                     // Visit the child on the side the ray comes from first.
-                    let (near, far) = if dir_is_neg[n.axis as usize] {
+                    let (near, far) = if neg_bits >> n.axis & 1 != 0 {
                         (n.offset as usize, node + 1)
                     } else {
                         (node + 1, n.offset as usize)
