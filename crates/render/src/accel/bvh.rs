@@ -269,6 +269,9 @@ impl Bvh {
         }
         let inv_dir = ray.dir.recip();
         let dir_is_neg = [inv_dir.x < 0.0, inv_dir.y < 0.0, inv_dir.z < 0.0];
+        // The same signs as bits, for the split axis read from each node: indexing the array by
+        // it would keep the array in memory, and reading it back packed stalls store forwarding.
+        let neg_bits = dir_is_neg.iter().enumerate().fold(0u32, |bits, (k, &neg)| bits | u32::from(neg) << k);
         let mut stack = [0u32; STACK];
         let mut top = 0;
         let mut node = 0usize;
@@ -282,7 +285,7 @@ impl Bvh {
                     }
                 } else {
                     // Visit the child on the side the ray comes from first.
-                    let (near, far) = if dir_is_neg[n.axis as usize] {
+                    let (near, far) = if neg_bits >> n.axis & 1 != 0 {
                         (n.offset as usize, node + 1)
                     } else {
                         (node + 1, n.offset as usize)
@@ -365,25 +368,26 @@ impl Bvh {
 /// overlap the node's box? The comparisons are written so that a NaN slab distance (a zero
 /// direction component with the origin on the slab's plane) leaves the interval unchanged:
 /// conservative. `neg[k]` selects which bound is entered first along axis `k`.
+///
+/// No early exit per axis: the entry is the latest of the slabs' entries and the exit the
+/// earliest of their exits, taken by selects, and one test decides, so traversal pays one
+/// unpredictable branch per node rather than up to three. The answer is pbrt's: its per-axis
+/// exits test every pair of one slab's entry and another's exit, which `t0 <= t1` tests too,
+/// besides each slab against itself, and a slab's entry passes its own (guarded, rounded
+/// monotonically) exit unless that exit is negative, when `t1 >= 0` fails in both.
 #[inline(always)]
 fn slab_hit(n: &Node, origin: Vec3, inv_dir: Vec3, neg: [bool; 3], t_max: f64) -> bool {
     let slab = |k: usize, o: f64, inv: f64| {
         let (lo, hi) = if neg[k] { (n.max[k], n.min[k]) } else { (n.min[k], n.max[k]) };
         ((f64::from(lo) - o) * inv, (f64::from(hi) - o) * inv * SLAB_GUARD)
     };
-    let (mut t0, mut t1) = slab(0, origin.x, inv_dir.x);
-    for (near, far) in [slab(1, origin.y, inv_dir.y), slab(2, origin.z, inv_dir.z)] {
-        if t0 > far || near > t1 {
-            return false;
-        }
-        if near > t0 {
-            t0 = near;
-        }
-        if far < t1 {
-            t1 = far;
-        }
-    }
-    t0 <= t_max && t1 >= 0.0
+    let (x, y, z) = (slab(0, origin.x, inv_dir.x), slab(1, origin.y, inv_dir.y), slab(2, origin.z, inv_dir.z));
+    // Each select keeps the running bound when the new distance is NaN.
+    let later = |t: f64, near: f64| if near > t { near } else { t };
+    let earlier = |t: f64, far: f64| if far < t { far } else { t };
+    let t0 = later(later(x.0, y.0), z.0);
+    let t1 = earlier(earlier(x.1, y.1), z.1);
+    (t0 <= t1) & (t0 <= t_max) & (t1 >= 0.0)
 }
 
 fn largest_axis(v: Vec3) -> usize {

@@ -42,8 +42,47 @@ pub fn concentric_disk(u: [f64; 2]) -> [f64; 2] {
     if a == 0.0 && b == 0.0 {
         return [0.0, 0.0];
     }
-    let (r, theta) = if a.abs() > b.abs() { (a, PI / 4.0 * (b / a)) } else { (b, PI / 2.0 - PI / 4.0 * (a / b)) };
-    [r * theta.cos(), r * theta.sin()]
+    // θ = π/4 · b/a, or π/2 − π/4 · a/b, whose cosine and sine are the sine and cosine of
+    // π/4 · a/b: only angles within ±π/4 are needed. Chosen by selects, not branches, as the
+    // case is a coin flip per sample.
+    let swap = a.abs() <= b.abs();
+    let (r, other) = if swap { (b, a) } else { (a, b) };
+    let (sin, cos) = sin_cos_within_quarter_pi(PI / 4.0 * (other / r));
+    let (x, y) = if swap { (sin, cos) } else { (cos, sin) };
+    [r * x, r * y]
+}
+
+/// fdlibm's minimax coefficients of sin on [−π/4, π/4], of x³ to x¹³ (`k_sin.c`).
+const SIN_COEFFICIENTS: [f64; 6] = [
+    -1.666_666_666_666_663_2e-1,
+    8.333_333_333_322_49e-3,
+    -1.984_126_982_985_795e-4,
+    2.755_731_370_707_006_8e-6,
+    -2.505_076_025_340_686_3e-8,
+    1.589_690_995_211_55e-10,
+];
+/// fdlibm's minimax coefficients of cos on [−π/4, π/4], of x⁴ to x¹⁴ (`k_cos.c`).
+const COS_COEFFICIENTS: [f64; 6] = [
+    4.166_666_666_666_66e-2,
+    -1.388_888_888_887_411e-3,
+    2.480_158_728_947_673e-5,
+    -2.755_731_435_139_066_3e-7,
+    2.087_572_321_298_175e-9,
+    -1.135_964_755_778_819_5e-11,
+];
+
+/// (sin x, cos x) for |x| ≤ π/4 with no argument reduction: fdlibm's kernels `__kernel_sin` and
+/// `__kernel_cos` (Sun Microsystems 1993, with no tail of a reduced argument), each below one ulp
+/// of error there; the two polynomials are independent, so their chains overlap.
+fn sin_cos_within_quarter_pi(x: f64) -> (f64, f64) {
+    let z = x * x;
+    let horner = |c: &[f64; 6]| c[..5].iter().rev().fold(c[5], |sum, &c| sum * z + c);
+    let sin = x + x * z * horner(&SIN_COEFFICIENTS);
+    // cos x = 1 − z/2 + z² C(z), with 1 − z/2 rounded and its rounding error added back.
+    let half_z = 0.5 * z;
+    let w = 1.0 - half_z;
+    let cos = w + (((1.0 - w) - half_z) + z * z * horner(&COS_COEFFICIENTS));
+    (sin, cos)
 }
 
 /// Uniform barycentric coordinates on a triangle (Heitz 2019, low-distortion square-to-triangle map).
@@ -76,6 +115,29 @@ pub fn power_heuristic(pdf_a: f64, pdf_b: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::sampling::Rng;
+
+    #[test]
+    fn quarter_pi_sin_cos_is_libms_to_the_last_bits() {
+        for k in -10_000..=10_000 {
+            let x = std::f64::consts::FRAC_PI_4 * k as f64 / 10_000.0;
+            let (sin, cos) = sin_cos_within_quarter_pi(x);
+            assert!((sin - x.sin()).abs() <= 2.0 * f64::EPSILON * x.sin().abs().max(f64::MIN_POSITIVE), "sin {x}");
+            assert!((cos - x.cos()).abs() <= 2.0 * f64::EPSILON * x.cos(), "cos {x}");
+        }
+    }
+
+    #[test]
+    fn concentric_disk_is_shirley_chius_polar_map() {
+        let mut r = Rng::new(11);
+        for _ in 0..10_000 {
+            let u = r.next_2d();
+            let [a, b] = u.map(|v| 2.0 * v - 1.0);
+            let (radius, theta) =
+                if a.abs() > b.abs() { (a, PI / 4.0 * (b / a)) } else { (b, PI / 2.0 - PI / 4.0 * (a / b)) };
+            let [x, y] = concentric_disk(u);
+            assert!((x - radius * theta.cos()).abs() < 1e-15 && (y - radius * theta.sin()).abs() < 1e-15, "{u:?}");
+        }
+    }
 
     #[test]
     fn cosine_hemisphere_is_unit_and_upper() {

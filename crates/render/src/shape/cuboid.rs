@@ -64,20 +64,24 @@ impl Cuboid {
     /// component of zero makes that slab either everything (origin within it, faces included) or
     /// nothing; handled explicitly because `0·∞` would be NaN. So a ray sliding along a face is
     /// inside the closed box and hits the face it runs into, like a tangent ray grazing a sphere.
+    /// The three slabs are computed together (one vector reciprocal) and combined by selects,
+    /// with no early exit: a ray's hit or miss is not predictable, so branches per axis cost more
+    /// than the arithmetic they would skip.
     #[inline]
     fn slabs(&self, o: Vec3, d: Vec3) -> Option<(f64, f64)> {
+        let inv = d.recip();
+        let (t0, t1) = ((self.min - o) * inv, (self.max - o) * inv);
         let (mut near, mut far) = (f64::NEG_INFINITY, f64::INFINITY);
         for k in 0..3 {
-            if d[k] == 0.0 {
-                if o[k] < self.min[k] || o[k] > self.max[k] {
-                    return None;
-                }
-                continue;
-            }
-            let inv = 1.0 / d[k];
-            let (t0, t1) = ((self.min[k] - o[k]) * inv, (self.max[k] - o[k]) * inv);
-            near = near.max(t0.min(t1));
-            far = far.min(t0.max(t1));
+            let (enter, exit) = if d[k] != 0.0 {
+                (t0[k].min(t1[k]), t0[k].max(t1[k]))
+            } else if (self.min[k]..=self.max[k]).contains(&o[k]) {
+                (f64::NEG_INFINITY, f64::INFINITY)
+            } else {
+                (f64::INFINITY, f64::NEG_INFINITY)
+            };
+            near = near.max(enter);
+            far = far.min(exit);
         }
         (near <= far).then_some((near, far))
     }

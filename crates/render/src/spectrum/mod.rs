@@ -8,6 +8,7 @@
 //! emitter (1, 1, 1) and a white reflector under it both come back as RGB (1, 1, 1).
 //! The design follows pbrt-v4's `spectrum.h` / `color.h` (Pharr, Jakob, Humphreys 2023, ch. 4.5–4.6).
 
+mod atanh;
 mod blackbody;
 mod blackbody_colour;
 mod cie;

@@ -2,6 +2,7 @@
 //! Sampling", EGSR): one hero wavelength per path from one sample u, and N − 1 companions at u + i/N
 //! (mod 1), a rotation that stratifies the N wavelengths over the range.
 
+use super::atanh::atanh;
 use super::{LAMBDA_MAX, LAMBDA_MIN, N_WAVELENGTHS};
 
 /// Centre of the visible-importance density, in nm.
@@ -43,13 +44,12 @@ impl SampledWavelengths {
     /// The density at t is a (1 − t²) / (t(830) − t(360)), as 1/cosh² = 1 − tanh².
     pub fn sample_visible(u: f32) -> Self {
         let (t_lo, t_hi) = VISIBLE_TANH_BOUNDS;
-        let mut pdf = [0.0; N_WAVELENGTHS];
-        let lambda = std::array::from_fn(|i| {
-            let t = t_lo + rotated(u, i) * (t_hi - t_lo);
-            pdf[i] = (VISIBLE_RATE * (1.0 - t * t) / (t_hi - t_lo)) as f32;
-            // In f32, as the wavelength is kept: atanh's logarithm is the costliest step of
-            // drawing a path's wavelengths, and f32's is about twice as fast as f64's.
-            let lambda = VISIBLE_CENTRE as f32 + (t as f32).atanh() / VISIBLE_RATE as f32;
+        let t: [f64; N_WAVELENGTHS] = std::array::from_fn(|i| t_lo + rotated(u, i) * (t_hi - t_lo));
+        let pdf = t.map(|t| (VISIBLE_RATE * (1.0 - t * t) / (t_hi - t_lo)) as f32);
+        // The density is that of t, exact; atanh in f32 (the wavelength is kept in f32) and for
+        // all N at once: its logarithm is the costliest step of drawing a path's wavelengths.
+        let lambda = atanh(t).map(|a| {
+            let lambda = VISIBLE_CENTRE as f32 + a / VISIBLE_RATE as f32;
             lambda.clamp(LAMBDA_MIN as f32, LAMBDA_MAX as f32)
         });
         Self { lambda, pdf }
