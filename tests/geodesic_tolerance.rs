@@ -116,6 +116,7 @@ fn path_deviation(scene: &Scene, rays: &[Start], rtol: f64) -> f64 {
         escape_radius: 100.0,
         max_step_fraction: 0.5,
         max_steps: 1_000_000,
+        check_every_step: true,
     };
     let room = scene.world.bounds(Region::Upper);
     let mut max = 0.0f64;

@@ -138,12 +138,14 @@ impl Propagator {
                 escape_radius,
                 max_step_fraction: 0.5,
                 max_steps: 1_000_000,
+                check_every_step: false,
             },
             Intersection::Poster { step, max_iterations } => TraceSettings {
                 integrator: Integrator::Rk4 { step },
                 escape_radius,
                 max_step_fraction: f64::INFINITY,
                 max_steps: max_iterations,
+                check_every_step: false,
             },
         };
         let plane_trace = TraceSettings { max_step_fraction: trace.max_step_fraction.max(1.0), ..trace };

@@ -27,7 +27,13 @@ pub struct Scattering {
 
 /// Settings for scattering experiments: far escape radius and tight tolerance.
 pub fn settings(integrator: Integrator) -> TraceSettings {
-    TraceSettings { integrator, escape_radius: 1e3, max_step_fraction: 0.5, max_steps: 2_000_000 }
+    TraceSettings {
+        integrator,
+        escape_radius: 1e3,
+        max_step_fraction: 0.5,
+        max_steps: 2_000_000,
+        check_every_step: true,
+    }
 }
 
 /// Scatters a ray of impact parameter `b` (in the equatorial plane tilted by `inclination_rad`

@@ -39,6 +39,7 @@ const ADAPTIVE: TraceSettings = TraceSettings {
     escape_radius: 1e3,
     max_step_fraction: 0.5,
     max_steps: 100_000,
+    check_every_step: true,
 };
 
 fn check_constants(metric: &dyn Metric, rays: usize, seed: u64) {

@@ -77,6 +77,7 @@ mod tests {
             escape_radius: 1e3,
             max_step_fraction: f64::INFINITY,
             max_steps: steps,
+            check_every_step: true,
         };
         let mut end = y;
         HamiltonianTracer::<_, N, F>::of_flow(kerr, y, settings).run(|step| {

@@ -245,7 +245,9 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
             }
             match self.step(f64::INFINITY) {
                 Ok(step) => {
-                    max_h = max_h.max(self.metric.hamiltonian(&step.end.x, &step.end.p).abs());
+                    if self.settings.check_every_step {
+                        max_h = max_h.max(self.metric.hamiltonian(&step.end.x, &step.end.p).abs());
+                    }
                     if visit(&step) == Visit::Stop {
                         break Fate::Stopped;
                     }
@@ -255,7 +257,9 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
                 Err(failure) => break Fate::Failed(failure),
             }
         };
-        Trace { fate, steps: self.steps, max_abs_hamiltonian: max_h, end: self.state() }
+        let end = self.state();
+        let max_abs_hamiltonian = max_h.max(self.metric.hamiltonian(&end.x, &end.p).abs());
+        Trace { fate, steps: self.steps, max_abs_hamiltonian, end }
     }
 }
 

@@ -78,6 +78,10 @@ pub struct TraceSettings {
     pub max_step_fraction: f64,
     /// A ray that has not ended after this many accepted steps has failed.
     pub max_steps: u32,
+    /// Whether [`Trace::max_abs_hamiltonian`] is the largest `|H|` over every accepted step's
+    /// end (a check of the integration, for people and tests) or over the ray's start and end
+    /// alone: a renderer reads no such check and need not evaluate `H` at every step.
+    pub check_every_step: bool,
 }
 
 impl Default for TraceSettings {
@@ -87,6 +91,7 @@ impl Default for TraceSettings {
             escape_radius: 1e3,
             max_step_fraction: 0.5,
             max_steps: 100_000,
+            check_every_step: true,
         }
     }
 }
@@ -144,7 +149,8 @@ pub struct Trace {
     pub fate: Fate,
     /// Accepted steps.
     pub steps: u32,
-    /// Largest `|H|` at the accepted step ends.
+    /// Largest `|H|` at the accepted step ends, or at the start and the end where the settings
+    /// do not [`TraceSettings::check_every_step`].
     pub max_abs_hamiltonian: f64,
     pub end: State,
 }

@@ -825,6 +825,7 @@ mod tests {
             escape_radius: 40.0,
             max_step_fraction: 0.5,
             max_steps: 10_000,
+            check_every_step: true,
         };
         let (mut bounded, mut steps) = (0, 0);
         for k in 0..60 {

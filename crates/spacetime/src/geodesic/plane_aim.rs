@@ -396,6 +396,7 @@ mod tests {
             escape_radius: 100.0,
             max_step_fraction: 0.5,
             max_steps: 100_000,
+            check_every_step: true,
         };
         let four_d = AimSettings { trace, tolerance: 1e-9, max_shots: 40 };
         let mut compared = 0;
@@ -513,6 +514,7 @@ mod tests {
             escape_radius: 1e3,
             max_step_fraction: 1.0,
             max_steps: 100_000,
+            check_every_step: true,
         };
         let mut compared = [0; 2];
         for (x, y) in pairs() {
