@@ -643,7 +643,11 @@ mod tests {
         assert_eq!((each.fate, each.steps, each.end), (ends_only.fate, ends_only.steps, ends_only.end));
         let h = |s: &State| hole.hamiltonian(&s.x, &s.p).abs();
         let ends = h(&start).max(h(&ends_only.end));
-        assert!((ends_only.max_abs_hamiltonian - ends).abs() <= 1e-2 * ends, "{} vs {ends}", ends_only.max_abs_hamiltonian);
+        assert!(
+            (ends_only.max_abs_hamiltonian - ends).abs() <= 1e-2 * ends,
+            "{} vs {ends}",
+            ends_only.max_abs_hamiltonian
+        );
         assert!(each.max_abs_hamiltonian > 1.5 * ends, "{} vs {ends}", each.max_abs_hamiltonian);
     }
 
