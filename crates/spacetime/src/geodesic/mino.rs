@@ -525,7 +525,11 @@ impl MinoTracer {
         if !(w < 0.0 && u > escape_u) {
             return cap;
         }
-        let turning = 1.0 / (v0 * v0 + v1 * v1 + v2 * v2).sqrt();
+        let longest = self.settings.max_step_fraction / (v0 * v0 + v1 * v1 + v2 * v2).sqrt();
+        if cap >= longest {
+            // The turning time binds already (the cap is the least of it and the pole's time).
+            return cap;
+        }
         // At constant `u'` the time to the target `u − target` over `−u'`. Far out, though,
         // `u'' = −ω² u + O(u²)` with ω² = Q + L² − a²E² (the radial quartic's linear term): `u`
         // oscillates harmonically (in flat space a straight line is u = cos(bλ)/b) and reaches 0
@@ -539,7 +543,7 @@ impl MinoTracer {
         } else {
             linear
         };
-        cap.max(to_twice_escape.min(self.settings.max_step_fraction * turning))
+        cap.max(to_twice_escape.min(longest))
     }
 
     /// The Taylor step from the current state, at most `cap` long (one step scale where the cap
