@@ -61,19 +61,7 @@ impl Tetrad {
             project(v)
         });
         let s = nalgebra::Matrix3::from_fn(|i, j| quadratic(&g, &axes[i], &axes[j]));
-        let inv_sqrt = match inverse_square_root::inverse_square_root(&s) {
-            Some(closed_form) => closed_form,
-            None => {
-                // Ill-conditioned (deep in a strong field), or not positive definite.
-                let eig = nalgebra::SymmetricEigen::new(s);
-                if eig.eigenvalues.iter().any(|&l| l.is_nan() || l <= 0.0) {
-                    return Err(FrameError::Degenerate);
-                }
-                eig.eigenvectors
-                    * nalgebra::Matrix3::from_diagonal(&eig.eigenvalues.map(|l| 1.0 / l.sqrt()))
-                    * eig.eigenvectors.transpose()
-            }
-        };
+        let inv_sqrt = inverse_square_root::inverse_square_root(&s).ok_or(FrameError::Degenerate)?;
         let spatial: [Vector4; 3] =
             std::array::from_fn(|i| std::array::from_fn(|k| (0..3).map(|j| inv_sqrt[(i, j)] * axes[j][k]).sum()));
         Ok(Tetrad { e: [u, spatial[0], spatial[1], spatial[2]] })

@@ -199,14 +199,26 @@ pub fn write_data_image(data: &DataLayer, path: &Path, metadata: &Metadata) -> R
         return Err(ImageWriteError::EmptyImage { path: path.to_owned() });
     }
     write_atomically(path, |temporary| {
-        let io_error = |source| ImageWriteError::Io { path: temporary.to_owned(), source };
-        let mut writer = BufWriter::new(File::create(temporary).map_err(io_error)?);
-        encode_exr_channels(data_channels(data).collect(), (data.width, data.height), metadata, &mut writer).map_err(
-            |source| ImageWriteError::Encode { path: temporary.to_owned(), format: ImageFormat::Exr, source },
-        )?;
-        writer.flush().map_err(io_error)?;
-        writer.get_ref().sync_all().map_err(io_error)
+        write_file(temporary, ImageFormat::Exr, |writer| {
+            encode_exr_channels(data_channels(data).collect(), (data.width, data.height), metadata, writer)
+        })
     })
+}
+
+/// An encoder's error.
+type EncodeError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Creates `path`, has `encode` write it as `format`, and flushes it to the disk.
+fn write_file(
+    path: &Path,
+    format: ImageFormat,
+    encode: impl FnOnce(&mut BufWriter<File>) -> Result<(), EncodeError>,
+) -> Result<(), ImageWriteError> {
+    let io_error = |source| ImageWriteError::Io { path: path.to_owned(), source };
+    let mut writer = BufWriter::new(File::create(path).map_err(io_error)?);
+    encode(&mut writer).map_err(|source| ImageWriteError::Encode { path: path.to_owned(), format, source })?;
+    writer.flush().map_err(io_error)?;
+    writer.get_ref().sync_all().map_err(io_error)
 }
 
 /// `layer`'s data channels and then its spectral channels, as EXR channels.
@@ -229,12 +241,12 @@ fn encode_exr_channels(
     (width, height): (u32, u32),
     metadata: &Metadata,
     writer: &mut BufWriter<File>,
-) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
+) -> Result<(), EncodeError> {
     use exr::prelude::{AnyChannels, Encoding, Image, WritableImage as _};
     let mut image = Image::from_channels((width as usize, height as usize), AnyChannels::sort(channels.into()));
     image.layer_data.encoding = Encoding::SMALL_LOSSLESS;
     image.layer_data.attributes.other.extend(exr_attributes(metadata));
-    image.write().to_buffered(writer).map_err(|e| Box::new(e) as _)
+    Ok(image.write().to_buffered(writer)?)
 }
 
 /// Runs `write` on a temporary sibling of `path` and renames it into place; on failure the
@@ -315,66 +327,53 @@ fn write_to(
     tonemap: &ToneMap,
     metadata: &Metadata,
 ) -> Result<(), ImageWriteError> {
-    let io_error = |source| ImageWriteError::Io { path: path.to_owned(), source };
-    let encode_error = |source: Box<dyn std::error::Error + Send + Sync>| ImageWriteError::Encode {
-        path: path.to_owned(),
-        format,
-        source,
-    };
-    let mut writer = BufWriter::new(File::create(path).map_err(io_error)?);
     let (width, height) = (film.width(), film.height());
     let scale = tonemap.exposure_scale();
-    match format {
-        ImageFormat::Png => {
-            let bytes = to_rgb8(film, tonemap);
-            let mut encoder = png::Encoder::new(&mut writer, width, height);
-            encoder.set_color(png::ColorType::Rgb);
-            encoder.set_depth(png::BitDepth::Eight);
-            for (key, value) in metadata {
-                encoder
-                    .add_itxt_chunk(format!("{METADATA_PREFIX}{key}"), value.clone())
-                    .map_err(|e| encode_error(Box::new(e)))?;
+    write_file(path, format, |writer| {
+        match format {
+            ImageFormat::Png => {
+                let bytes = to_rgb8(film, tonemap);
+                let mut encoder = png::Encoder::new(writer, width, height);
+                encoder.set_color(png::ColorType::Rgb);
+                encoder.set_depth(png::BitDepth::Eight);
+                for (key, value) in metadata {
+                    encoder.add_itxt_chunk(format!("{METADATA_PREFIX}{key}"), value.clone())?;
+                }
+                encoder.write_header().and_then(|mut w| w.write_image_data(&bytes).and_then(|()| w.finish()))?;
             }
-            encoder
-                .write_header()
-                .and_then(|mut w| w.write_image_data(&bytes).and_then(|()| w.finish()))
-                .map_err(|e| encode_error(Box::new(e)))?;
+            ImageFormat::Exr if data.is_some() => {
+                use exr::prelude::{AnyChannel, FlatSamples};
+                let colour: [Vec<f32>; 3] = std::array::from_fn(|c| {
+                    film.bounds().pixels().map(|(x, y)| (film.pixel_f64(x, y)[c] * scale) as f32).collect()
+                });
+                let [r, g, b] = colour.map(FlatSamples::F32);
+                let mut channels = vec![AnyChannel::new("R", r), AnyChannel::new("G", g), AnyChannel::new("B", b)];
+                channels.extend(data.into_iter().flat_map(data_channels));
+                encode_exr_channels(channels, (width, height), metadata, writer)?;
+            }
+            ImageFormat::Exr => {
+                use exr::prelude::{Encoding, Image, SpecificChannels, Vec2, WritableImage as _};
+                let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
+                    // x < width and y < height, both u32, so the casts are lossless.
+                    let [r, g, b] = film.pixel_f64(x as u32, y as u32).map(|c| (c * scale) as f32);
+                    (r, g, b)
+                });
+                let size = (width as usize, height as usize);
+                let mut image = Image::from_encoded_channels(size, Encoding::SMALL_LOSSLESS, channels);
+                image.layer_data.attributes.other.extend(exr_attributes(metadata));
+                image.write().to_buffered(writer)?;
+            }
+            ImageFormat::Hdr => {
+                let pixels: Vec<image::Rgb<f32>> = film
+                    .bounds()
+                    .pixels()
+                    .map(|(x, y)| image::Rgb(film.pixel_f64(x, y).map(|c| (c * scale).max(0.0) as f32)))
+                    .collect();
+                HdrEncoder::new(writer).encode(&pixels, width as usize, height as usize)?;
+            }
         }
-        ImageFormat::Exr if data.is_some() => {
-            use exr::prelude::{AnyChannel, FlatSamples};
-            let colour: [Vec<f32>; 3] = std::array::from_fn(|c| {
-                film.bounds().pixels().map(|(x, y)| (film.pixel_f64(x, y)[c] * scale) as f32).collect()
-            });
-            let [r, g, b] = colour.map(FlatSamples::F32);
-            let mut channels = vec![AnyChannel::new("R", r), AnyChannel::new("G", g), AnyChannel::new("B", b)];
-            channels.extend(data.into_iter().flat_map(data_channels));
-            encode_exr_channels(channels, (width, height), metadata, &mut writer).map_err(encode_error)?;
-        }
-        ImageFormat::Exr => {
-            use exr::prelude::{Encoding, Image, SpecificChannels, Vec2, WritableImage as _};
-            let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
-                // x < width and y < height, both u32, so the casts are lossless.
-                let [r, g, b] = film.pixel_f64(x as u32, y as u32).map(|c| (c * scale) as f32);
-                (r, g, b)
-            });
-            let size = (width as usize, height as usize);
-            let mut image = Image::from_encoded_channels(size, Encoding::SMALL_LOSSLESS, channels);
-            image.layer_data.attributes.other.extend(exr_attributes(metadata));
-            image.write().to_buffered(&mut writer).map_err(|e| encode_error(Box::new(e)))?;
-        }
-        ImageFormat::Hdr => {
-            let pixels: Vec<image::Rgb<f32>> = film
-                .bounds()
-                .pixels()
-                .map(|(x, y)| image::Rgb(film.pixel_f64(x, y).map(|c| (c * scale).max(0.0) as f32)))
-                .collect();
-            HdrEncoder::new(&mut writer)
-                .encode(&pixels, width as usize, height as usize)
-                .map_err(|e| encode_error(Box::new(e)))?;
-        }
-    }
-    writer.flush().map_err(io_error)?;
-    writer.get_ref().sync_all().map_err(io_error)
+        Ok(())
+    })
 }
 
 /// `metadata` as EXR text attributes (UTF-8 bytes: EXR text is bytes, not Latin-1 only).

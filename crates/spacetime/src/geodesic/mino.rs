@@ -452,8 +452,14 @@ impl MinoTracer {
 
     /// The ray's state now.
     pub fn state(&self) -> State {
+        self.state_and_hamiltonian().0
+    }
+
+    /// The ray's state now, and its Hamiltonian (both from its chart momentum).
+    fn state_and_hamiltonian(&self) -> (State, f64) {
         let [x, y, z] = self.constants.point(self.y[0], [self.y[2], self.y[3], self.y[4]]);
-        State { x: [self.time, x, y, z], p: self.constants.momentum(&self.y).0 }
+        let (p, h) = self.constants.momentum(&self.y);
+        (State { x: [self.time, x, y, z], p }, h)
     }
 
     /// The Mino step over which the ray's path changes: the time in which `n` turns a radian,
@@ -616,8 +622,8 @@ impl RayTracer for MinoTracer {
                 Err(failure) => break Fate::Failed(*failure),
             }
         };
-        let end_h = self.constants.momentum(&self.y).1.abs();
-        Trace { fate, steps: self.steps, max_abs_hamiltonian: max_h.max(end_h), end: self.state() }
+        let (end, end_h) = self.state_and_hamiltonian();
+        Trace { fate, steps: self.steps, max_abs_hamiltonian: max_h.max(end_h.abs()), end }
     }
 }
 

@@ -1,6 +1,6 @@
-//! The inverse square root of a symmetric positive definite 3 × 3 matrix in closed form: the
-//! Gram matrix of a frame's projected axes, which Löwdin's symmetric orthonormalisation
-//! ([`super::Tetrad::with_velocity`]) multiplies them by.
+//! The inverse square root of a symmetric positive definite 3 × 3 matrix, in closed form where
+//! that is accurate: the Gram matrix of a frame's projected axes, which Löwdin's symmetric
+//! orthonormalisation ([`super::Tetrad::with_velocity`]) multiplies them by.
 //!
 //! The eigenvalues are the roots of the characteristic cubic in Smith's trigonometric form
 //! (O. K. Smith 1961, "Eigenvalues of a symmetric 3 × 3 matrix", CACM 4(4), 168), and `S^{-1/2}`
@@ -13,7 +13,7 @@
 //!
 //! No eigenvectors and no iteration. The cubic's roots carry absolute errors of about
 //! ε·λ_max, so the result is trusted only while the condition number is at most
-//! [`MAX_CONDITION`]; beyond it the caller takes the eigen-decomposition.
+//! [`MAX_CONDITION`]; beyond it the eigen-decomposition gives it.
 
 use nalgebra::Matrix3;
 
@@ -22,9 +22,23 @@ use nalgebra::Matrix3;
 /// static observer's radial axis is stretched by `1/(1 − 2M/r)`: 100 at r = 2.02 M).
 pub const MAX_CONDITION: f64 = 100.0;
 
-/// `S^{-1/2}` of the symmetric matrix `s`, or `None` where the closed form cannot be trusted:
-/// `s` not positive definite, not finite, or with a condition number above [`MAX_CONDITION`].
+/// `S^{-1/2}` of the symmetric matrix `s`, or `None` where `s` is not positive definite or not
+/// finite: in closed form, or by the eigen-decomposition where the closed form cannot be
+/// trusted (ill-conditioned, as deep in a strong field).
 pub fn inverse_square_root(s: &Matrix3<f64>) -> Option<Matrix3<f64>> {
+    closed_form(s).or_else(|| {
+        let eig = nalgebra::SymmetricEigen::new(*s);
+        eig.eigenvalues.iter().all(|&l| l > 0.0).then(|| {
+            eig.eigenvectors
+                * Matrix3::from_diagonal(&eig.eigenvalues.map(|l| 1.0 / l.sqrt()))
+                * eig.eigenvectors.transpose()
+        })
+    })
+}
+
+/// `S^{-1/2}` in closed form, or `None` where it cannot be trusted: `s` not positive definite,
+/// not finite, or with a condition number above [`MAX_CONDITION`].
+fn closed_form(s: &Matrix3<f64>) -> Option<Matrix3<f64>> {
     let [l1, l2, l3] = eigenvalues(s)?;
     if !(l3 > 0.0 && l1 <= MAX_CONDITION * l3) {
         return None;
@@ -90,7 +104,7 @@ mod tests {
             let log_kappa = MAX_CONDITION.log10();
             let lambda = [0.0, spread[0] * log_kappa, spread[1] * log_kappa].map(|e| 10f64.powf(scale + e));
             let s = with_eigenvalues(lambda, angles);
-            let x = inverse_square_root(&s).expect("within the trusted condition number");
+            let x = closed_form(&s).expect("within the trusted condition number");
             prop_assert!(whitening_error(&s, &x) < 1e-12, "{lambda:?}: {}", whitening_error(&s, &x));
             prop_assert!((x - x.transpose()).abs().max() < 1e-12 * x.abs().max());
             let eig = nalgebra::SymmetricEigen::new(s);
@@ -104,10 +118,10 @@ mod tests {
     #[test]
     fn repeated_eigenvalues_are_exact() {
         let identity = Matrix3::identity();
-        assert_eq!(inverse_square_root(&(identity * 4.0)), Some(identity * 0.5));
+        assert_eq!(closed_form(&(identity * 4.0)), Some(identity * 0.5));
         for lambda in [[2.0, 2.0, 0.5], [3.0, 1.0, 1.0], [1.0 + 1e-9, 1.0, 1.0 - 1e-9]] {
             let s = with_eigenvalues(lambda, [0.3, 1.1, -0.4]);
-            let x = inverse_square_root(&s).unwrap();
+            let x = closed_form(&s).unwrap();
             assert!(whitening_error(&s, &x) < 1e-13, "{lambda:?}: {}", whitening_error(&s, &x));
         }
     }
@@ -115,9 +129,9 @@ mod tests {
     #[test]
     fn refuses_what_it_cannot_trust() {
         let s = |lambda| with_eigenvalues(lambda, [0.2, 0.5, 0.9]);
-        assert_eq!(inverse_square_root(&s([1.0, 1.0, -0.1])), None, "indefinite");
-        assert_eq!(inverse_square_root(&s([1.0, 1.0, 0.0])), None, "singular");
-        assert_eq!(inverse_square_root(&s([1.0, 1.0, 0.5 / MAX_CONDITION])), None, "ill-conditioned");
-        assert_eq!(inverse_square_root(&(Matrix3::identity() * f64::NAN)), None);
+        assert_eq!(closed_form(&s([1.0, 1.0, -0.1])), None, "indefinite");
+        assert_eq!(closed_form(&s([1.0, 1.0, 0.0])), None, "singular");
+        assert_eq!(closed_form(&s([1.0, 1.0, 0.5 / MAX_CONDITION])), None, "ill-conditioned");
+        assert_eq!(closed_form(&(Matrix3::identity() * f64::NAN)), None);
     }
 }
