@@ -13,15 +13,30 @@
 //! Writing images is the film's business, not this module's.
 
 use crate::color::Rgb;
+use crate::digest::{write_f64s, ContentDigest, Hex};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// A linear-RGB raster, row-major from the top-left pixel. Never empty.
-#[derive(Clone, Debug, PartialEq)]
+///
+/// `Debug` shows the size and a digest of the pixels, not the pixels (see [`crate::digest`]).
+#[derive(Clone, PartialEq)]
 pub struct ImageData {
     width: usize,
     height: usize,
     pixels: Vec<Rgb>,
+    digest: ContentDigest,
+}
+
+impl fmt::Debug for ImageData {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let digest = self.digest.get(|h| write_f64s(h, self.pixels.iter().flat_map(|p| [p.r, p.g, p.b])));
+        f.debug_struct("ImageData")
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("content", &Hex(digest))
+            .finish()
+    }
 }
 
 /// What a lookup does with coordinates outside the image.
@@ -96,6 +111,7 @@ impl ImageData {
             width,
             height,
             pixels,
+            digest: ContentDigest::default(),
         })
     }
 
