@@ -252,8 +252,18 @@ impl MetricFunction for WrittenMetric {
 
 /// Signs of the eigenvalues of a symmetric matrix: (negative, zero) counts, zero meaning below
 /// 10⁻¹² of the largest.
+///
+/// The matrix is first scaled to unit diagonal, `D^{-1/2} g D^{-1/2}` with `D = |diag g|`: a
+/// congruence, which keeps the signature (Sylvester's law of inertia), and which keeps a
+/// metric's scales from posing as degeneracy. Near Schwarzschild's horizon `g_tt ≈ −10⁻⁷` beside
+/// `g_rr ≈ 10⁷`: unscaled, `g_tt` falls under 10⁻¹² of the largest eigenvalue and the metric
+/// would look degenerate where it is only badly scaled.
 fn signature(g: &Matrix4) -> (usize, usize) {
-    let m = nalgebra::Matrix4::from_fn(|i, j| g[i][j]);
+    let scale = |i: usize| match g[i][i].abs().sqrt() {
+        d if d > 0.0 && d.is_finite() => d,
+        _ => 1.0,
+    };
+    let m = nalgebra::Matrix4::from_fn(|i, j| g[i][j] / (scale(i) * scale(j)));
     let eig = nalgebra::SymmetricEigen::new(m).eigenvalues;
     let big = eig.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     let zero = eig.iter().filter(|v| v.abs() <= 1e-12 * big).count();
@@ -498,6 +508,19 @@ pub(crate) mod tests {
         assert_eq!(s.rest(Region::Lower, [0.0, 6.0, 0.0]), Err(NoRest::NoSuchRegion));
         assert!(matches!(s.rest(Region::Upper, [0.0, 1.0, 0.0]), Err(NoRest::Collapsed { .. })));
         assert_eq!(s.rest(Region::Upper, [0.0, 0.0, 0.0]), Err(NoRest::NotFinite));
+        // Just outside the horizon the metric is Lorentzian though badly scaled (g_tt ≈ −5·10⁻⁸,
+        // g_rr ≈ 2·10⁷): what stops an observer there is the collapsed lapse, not the signature.
+        assert!(matches!(s.rest(Region::Upper, [0.0, 2.000_000_1, 0.0]), Err(NoRest::Collapsed { .. })));
+        let degenerate = written(
+            Coordinates::Cartesian,
+            &[],
+            &[(0, 0, "-1"), (1, 1, "1"), (2, 2, "1"), (2, 3, "1"), (3, 3, "1")],
+            None,
+        );
+        assert_eq!(
+            degenerate.rest(Region::Upper, [1.0, 0.0, 0.0]),
+            Err(NoRest::NotLorentzian { negative: 1, zero: 1 })
+        );
         let euclidean =
             written(Coordinates::Cartesian, &[], &[(0, 0, "1"), (1, 1, "1"), (2, 2, "1"), (3, 3, "1")], None);
         assert_eq!(euclidean.rest(Region::Upper, [1.0, 0.0, 0.0]), Err(NoRest::NotLorentzian { negative: 0, zero: 0 }));
