@@ -4,12 +4,15 @@
 //! into the scene file (`[views.NAME]`) and write a full-quality render, and the scene reloaded
 //! whenever its file changes (its error shown on the page while it is broken).
 //!
-//! Threads: the server answers each request on its own thread ([`server`]); one thread renders
-//! ([`refine`]) and one watches the file ([`source`]); they meet in [`state::Shared`].
+//! Threads: the server ([`http`]) answers each connection on its own thread, as [`server`] says;
+//! one thread renders ([`refine`]) and one watches the file ([`source`]); they meet in
+//! [`state::Shared`].
 
 mod full_render;
+mod http;
 mod parameters;
 mod refine;
+mod request;
 mod save_view;
 mod server;
 mod source;
@@ -23,6 +26,7 @@ use server::App;
 use source::Source;
 use state::Shared;
 use std::io::Write as _;
+use std::net::TcpListener;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -43,9 +47,9 @@ pub fn run(args: &Args) -> Result<(), String> {
     if let Err(e) = &loaded {
         eprintln!("nullpath preview: {e} (the page shows it until the file is fixed)");
     }
-    let server = tiny_http::Server::http(("127.0.0.1", args.port))
+    let listener = TcpListener::bind(("127.0.0.1", args.port))
         .map_err(|e| format!("cannot listen on 127.0.0.1:{}: {e}", args.port))?;
-    let port = server.server_addr().to_ip().map(|a| a.port()).ok_or("the server has no IP address")?;
+    let port = listener.local_addr().map_err(|e| format!("cannot listen on 127.0.0.1:{}: {e}", args.port))?.port();
     let app = Arc::new(App { shared: Arc::new(Shared::new(loaded)), source, port });
     eprintln!("nullpath preview: {} — open this page (Ctrl-C stops):", app.source.name());
     println!("http://127.0.0.1:{port}/");
@@ -55,6 +59,6 @@ pub fn run(args: &Args) -> Result<(), String> {
     std::thread::spawn(move || refine::refine_forever(&renderer));
     let watcher = Arc::clone(&app);
     std::thread::spawn(move || watcher.source.watch(&watcher.shared));
-    server::serve(&server, &app);
+    http::serve(&listener, Arc::new(move |request: &request::Request| server::handle(&app, request)));
     Ok(())
 }
