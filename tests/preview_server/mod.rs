@@ -57,12 +57,26 @@ pub struct Preview {
 impl Preview {
     /// Starts `nullpath preview SCENE --port 0` and reads the URL it prints.
     pub fn start(scene: &Path) -> Preview {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_nullpath"))
-            .args(["preview", scene.to_str().expect("UTF-8 path"), "--port", "0"])
-            .stdout(Stdio::piped())
-            .stderr(Stdio::inherit())
-            .spawn()
-            .expect("nullpath preview starts");
+        let mut command = Command::new(env!("CARGO_BIN_EXE_nullpath"));
+        command.args(["preview", scene.to_str().expect("UTF-8 path"), "--port", "0"]);
+        Self::spawn(command)
+    }
+
+    /// [`Preview::start`] under the limits the shell commands `limits` set (`ulimit -f 1`, say),
+    /// with SIGXFSZ ignored so that a write past the file size limit fails (EFBIG) rather than
+    /// kills the process.
+    pub fn start_under(scene: &Path, limits: &str) -> Preview {
+        let mut command = Command::new("sh");
+        command
+            .args(["-c", &format!("trap '' XFSZ; {limits}\nexec \"$0\" \"$@\"")])
+            .arg(env!("CARGO_BIN_EXE_nullpath"))
+            .args(["preview", scene.to_str().expect("UTF-8 path"), "--port", "0"]);
+        Self::spawn(command)
+    }
+
+    fn spawn(mut command: Command) -> Preview {
+        let mut child =
+            command.stdout(Stdio::piped()).stderr(Stdio::inherit()).spawn().expect("nullpath preview starts");
         let mut line = String::new();
         let stdout = child.stdout.take().expect("stdout");
         BufReader::new(stdout).read_line(&mut line).expect("the URL");

@@ -1,12 +1,16 @@
 //! "Render": the preview's view and parameters rendered at the scene file's own settings (size,
 //! samples, integrator) in the background, to a named image beside the scene file, with the
-//! metadata `nullpath render` writes. One at a time; the page shows its progress and where it went.
+//! metadata `nullpath render` writes. One at a time; the page shows its progress and where it went,
+//! or why it failed. An existing file is replaced only when the request says so, and the image
+//! appears whole or not at all.
 
 use super::state::{RenderJob, Shared};
 use crate::commands::provenance::{self, Source};
-use render::film::{check_output_path, write_image};
+use render::film::{check_output_path, write_image, ImageWriteError};
 use render::renderer::{render, Goal, Part};
 use render::scene::Scene;
+use std::any::Any;
+use std::panic::AssertUnwindSafe;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
@@ -29,8 +33,21 @@ pub fn output_path(directory: &Path, name: &str) -> Result<PathBuf, String> {
 }
 
 /// Starts rendering `scene` (the preview's scene at the file's settings) to `output`, unless a
-/// render is already running.
-pub fn start(shared: &Arc<Shared>, scene: Scene, source: Source, output: PathBuf) -> Result<(), String> {
+/// render is already running or, without `overwrite`, `output` exists.
+pub fn start(
+    shared: &Arc<Shared>,
+    scene: Scene,
+    source: Source,
+    output: PathBuf,
+    overwrite: bool,
+) -> Result<(), String> {
+    // `symlink_metadata`: a link is something that exists, even one that leads nowhere.
+    if !overwrite && output.symlink_metadata().is_ok() {
+        return Err(format!(
+            "{} already exists: choose another name, or tick \"replace\" (\"overwrite\": true) to replace it",
+            output.display()
+        ));
+    }
     {
         let mut inner = shared.lock();
         if inner.job.as_ref().is_some_and(|j| j.state == "running") {
@@ -45,7 +62,11 @@ pub fn start(shared: &Arc<Shared>, scene: Scene, source: Source, output: PathBuf
     }
     let shared = Arc::clone(shared);
     std::thread::spawn(move || {
-        let result = write(&shared, &scene, &source, &output);
+        // A panic in the render (a film too large for the memory, say) must end the job as a
+        // failure rather than leave it "running" forever, refusing every later render. (This
+        // needs `panic = "unwind"`, the default, which the release profile keeps.)
+        let result = std::panic::catch_unwind(AssertUnwindSafe(|| write(&shared, &scene, &source, &output, overwrite)))
+            .unwrap_or_else(|panic| Err(format!("the render failed: {}", panic_message(panic.as_ref()))));
         let mut inner = shared.lock();
         if let Some(job) = inner.job.as_mut() {
             (job.state, job.progress, job.message) = match result {
@@ -57,7 +78,16 @@ pub fn start(shared: &Arc<Shared>, scene: Scene, source: Source, output: PathBuf
     Ok(())
 }
 
-fn write(shared: &Shared, scene: &Scene, source: &Source, output: &Path) -> Result<String, String> {
+/// What a panic said, without the thread, file and line the terminal shows.
+fn panic_message(panic: &(dyn Any + Send)) -> &str {
+    match (panic.downcast_ref::<String>(), panic.downcast_ref::<&str>()) {
+        (Some(message), _) => message,
+        (None, Some(message)) => message,
+        (None, None) => "an internal error",
+    }
+}
+
+fn write(shared: &Shared, scene: &Scene, source: &Source, output: &Path, overwrite: bool) -> Result<String, String> {
     let never = AtomicBool::new(false);
     let progress = |done: u64, total: u64| {
         if let Some(job) = shared.lock().job.as_mut() {
@@ -66,8 +96,34 @@ fn write(shared: &Shared, scene: &Scene, source: &Source, output: &Path) -> Resu
     };
     let (film, stats) = render(scene, &never, &progress);
     let metadata = provenance::metadata(scene, source, Goal::spp(scene.settings.spp), Part::WHOLE, &stats);
-    write_image(&film, output, &scene.settings.tonemap, &metadata).map_err(|e| e.to_string())?;
-    Ok(format!("wrote {}: {}", output.display(), crate::commands::render::summary(&stats, scene)))
+    let shown = output.display();
+    let cannot = |e: std::io::Error| format!("cannot write image '{shown}': {e}");
+    // The image is written whole under a temporary name beside the output (with its extension,
+    // which picks the format) and only then takes the output's name, so that no reader ever
+    // sees half an image and a failure leaves the folder as it was (the temporary is removed
+    // when `temporary` is dropped).
+    let (Some(folder), Some(extension)) = (output.parent(), output.extension()) else {
+        return Err(format!("cannot write image '{shown}': it names no file in a folder"));
+    };
+    let mut suffix = std::ffi::OsString::from(".");
+    suffix.push(extension);
+    let temporary =
+        tempfile::Builder::new().prefix(".nullpath-render-").suffix(&suffix).tempfile_in(folder).map_err(cannot)?;
+    let temporary = temporary.into_temp_path();
+    write_image(&film, &temporary, &scene.settings.tonemap, &metadata).map_err(|e| match e {
+        // The error names the temporary; the user knows the output.
+        ImageWriteError::Io { source, .. } => cannot(source),
+        ImageWriteError::Encode { source, .. } => format!("cannot write image '{shown}': {source}"),
+        other => other.to_string(),
+    })?;
+    let placed = if overwrite { temporary.persist(output) } else { temporary.persist_noclobber(output) };
+    placed.map_err(|e| match e.error.kind() {
+        std::io::ErrorKind::AlreadyExists => {
+            format!("{shown} was created while rendering; it is left as it is and the render is not kept")
+        }
+        _ => cannot(e.error),
+    })?;
+    Ok(format!("wrote {shown}: {}", crate::commands::render::summary(&stats, scene)))
 }
 
 #[cfg(test)]

@@ -28,7 +28,7 @@ use state::Shared;
 use std::io::Write as _;
 use std::net::TcpListener;
 use std::path::PathBuf;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 #[derive(Parser, Debug)]
 #[command(after_help = "Open the printed http://127.0.0.1:PORT/ in a browser on this machine. Drag to orbit, \
@@ -50,7 +50,7 @@ pub fn run(args: &Args) -> Result<(), String> {
     let listener = TcpListener::bind(("127.0.0.1", args.port))
         .map_err(|e| format!("cannot listen on 127.0.0.1:{}: {e}", args.port))?;
     let port = listener.local_addr().map_err(|e| format!("cannot listen on 127.0.0.1:{}: {e}", args.port))?.port();
-    let app = Arc::new(App { shared: Arc::new(Shared::new(loaded)), source, port });
+    let app = Arc::new(App { shared: Arc::new(Shared::new(loaded)), source, port, writing: Mutex::new(()) });
     eprintln!("nullpath preview: {} — open this page (Ctrl-C stops):", app.source.name());
     println!("http://127.0.0.1:{port}/");
     // The URL is how scripts find the port: get it out now, not when the buffer fills.

@@ -205,7 +205,9 @@ $("reset").addEventListener("click", () => {
   button("/reset", {});
 });
 $("save-view").addEventListener("click", () => button("/save-view", { name: $("view-name").value }));
-$("render").addEventListener("click", () => button("/render", { output: $("output-name").value }));
+$("render").addEventListener("click", () =>
+  button("/render", { output: $("output-name").value, overwrite: $("overwrite").checked }),
+);
 
 // ---- state and frames -----------------------------------------------------------------------
 let fetchingFrame = false;

@@ -1,11 +1,14 @@
 //! "Save view": writes the preview's camera into the scene file as a `[views.NAME]` table
 //! (docs/scene-format.md), so that `nullpath render --view NAME` renders it. The edit goes through
 //! `toml_edit`, which keeps the rest of the file — comments, order, spacing — as the user wrote
-//! it; the file is written only if the edited text still loads, from the new view.
+//! it; the file is written only if the edited text still loads, from the new view, and it is
+//! replaced atomically: a reader (the file watcher, an editor) sees the old file or the new one,
+//! never half of one, and a failed write (a full disk) leaves the old one as it was.
 
 use super::view::Eye;
 use render::camera::Projection;
 use render::scene::Scene;
+use std::io::Write as _;
 use std::path::Path;
 use toml_edit::{value, Array, DocumentMut, Item, Table};
 
@@ -77,18 +80,55 @@ pub fn with_view(text: &str, name: &str, eye: &Eye, scene: &Scene) -> Result<Str
     Ok(doc.to_string())
 }
 
+/// Why a view was not saved.
+#[derive(Debug)]
+pub enum SaveError {
+    /// Not as asked: a bad name, a file that is not TOML, a view that would not load.
+    Refused(String),
+    /// The file could not be read or replaced (a full disk, a read-only folder): the machine's
+    /// fault, not the request's.
+    Io(String),
+}
+
 /// Saves `eye` as the view `name` of the scene file at `path`; the edited file must load from it.
-pub fn save(path: &Path, name: &str, eye: &Eye, scene: &Scene) -> Result<(), String> {
+/// The caller keeps other writers of the file out until it returns.
+pub fn save(path: &Path, name: &str, eye: &Eye, scene: &Scene) -> Result<(), SaveError> {
     let shown = path.display();
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {shown}: {e}"))?;
-    let edited = with_view(&text, name, eye, scene)?;
+    let text = std::fs::read_to_string(path).map_err(|e| SaveError::Io(format!("cannot read {shown}: {e}")))?;
+    let edited = with_view(&text, name, eye, scene).map_err(SaveError::Refused)?;
     let base = match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => dir,
         _ => Path::new("."),
     };
     scene::parse_view(&edited, &shown.to_string(), base, Some(name))
-        .map_err(|e| format!("the view would not load, so the file is left as it was: {e}"))?;
-    std::fs::write(path, edited).map_err(|e| format!("cannot write {shown}: {e}"))
+        .map_err(|e| SaveError::Refused(format!("the view would not load, so the file is left as it was: {e}")))?;
+    replace(path, &edited).map_err(|e| SaveError::Io(format!("cannot write {shown}: {e}; the file is left as it was")))
+}
+
+/// Replaces the file at `path` (the file a symbolic link leads to, where it is one) with `text`:
+/// written to a temporary in its folder (a rename does not cross file systems) with its
+/// permissions, flushed to the disk, then renamed over it. The temporary is removed if anything
+/// fails.
+fn replace(path: &Path, text: &str) -> std::io::Result<()> {
+    let path = std::fs::canonicalize(path)?;
+    let (Some(folder), Some(name)) = (path.parent(), path.file_name()) else {
+        return Err(std::io::Error::other("the path names no file"));
+    };
+    let permissions = std::fs::metadata(&path)?.permissions();
+    let mut prefix = std::ffi::OsString::from(".");
+    prefix.push(name);
+    prefix.push(".");
+    let mut temporary = tempfile::Builder::new().prefix(&prefix).suffix(".partial").tempfile_in(folder)?;
+    temporary.write_all(text.as_bytes())?;
+    temporary.as_file().set_permissions(permissions)?;
+    temporary.as_file().sync_all()?;
+    temporary.persist(&path).map_err(|e| e.error)?;
+    // The rename itself is on the disk once the folder is; where folders cannot be synced, the
+    // file is replaced all the same.
+    if let Ok(folder) = std::fs::File::open(folder) {
+        let _ = folder.sync_all();
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -121,5 +161,29 @@ mod tests {
         for name in ["", "a b", "x]\n[camera", "é", &"v".repeat(65)] {
             assert!(with_view(TEXT, name, &eye(), &scene).is_err(), "{name:?}");
         }
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn the_file_is_replaced_whole_with_its_permissions_through_links() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = std::env::temp_dir().join(format!("nullpath-save-view-replace-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("temporary directory");
+        let file = dir.join("scene.toml");
+        std::fs::write(&file, "old, and longer than the new text").expect("written");
+        std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o604)).expect("chmod");
+        let link = dir.join("link.toml");
+        std::os::unix::fs::symlink("scene.toml", &link).expect("link");
+
+        replace(&link, "new").expect("replaced");
+        assert_eq!(std::fs::read_to_string(&file).expect("readable"), "new");
+        assert_eq!(std::fs::metadata(&file).expect("exists").permissions().mode() & 0o777, 0o604);
+        assert!(std::fs::symlink_metadata(&link).expect("exists").file_type().is_symlink(), "the link is kept");
+        let mut names: Vec<_> =
+            std::fs::read_dir(&dir).expect("listed").map(|e| e.expect("entry").file_name()).collect();
+        names.sort();
+        assert_eq!(names, ["link.toml", "scene.toml"], "no temporary is left");
+        std::fs::remove_dir_all(&dir).expect("removed");
     }
 }

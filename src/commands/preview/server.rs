@@ -8,14 +8,14 @@
 use super::full_render;
 use super::http::Reply;
 use super::request::Request;
-use super::save_view;
+use super::save_view::{self, SaveError};
 use super::source::Source;
 use super::state::Shared;
 use super::view::{Eye, Overrides, SettingsRequest};
 use crate::commands::provenance;
 use crate::commands::render::DEFAULT_SCENE;
 use serde::de::DeserializeOwned;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 
 const PAGE: &str = include_str!("page.html");
 const SCRIPT: &str = include_str!("page.js");
@@ -26,6 +26,9 @@ pub struct App {
     pub source: Source,
     /// The port the server listens on, for the `Host` check.
     pub port: u16,
+    /// Held while the scene file is read, edited and replaced, so that two saves at once cannot
+    /// both read the old file and each drop the other's view.
+    pub writing: Mutex<()>,
 }
 
 /// The answer to `request`.
@@ -119,6 +122,9 @@ struct SaveView {
 #[serde(deny_unknown_fields)]
 struct RenderRequest {
     output: String,
+    /// Replace the file if it exists; without it an existing file is never touched.
+    #[serde(default)]
+    overwrite: bool,
 }
 
 fn post(app: &App, path: &str, body: &str) -> Reply {
@@ -137,24 +143,31 @@ fn post(app: &App, path: &str, body: &str) -> Reply {
             shared.change(|_, _| Ok(Overrides::default()))?;
             Ok("back to the scene file's camera and parameters".into())
         }),
-        "/save-view" => parse::<SaveView>(body).and_then(|request| save(app, &request.name)),
-        _ => parse::<RenderRequest>(body).and_then(|request| start_render(app, &request.output)),
+        "/save-view" => {
+            return match parse::<SaveView>(body).map_err(SaveError::Refused).and_then(|r| save(app, &r.name)) {
+                Ok(message) => outcome(Ok(message)),
+                Err(SaveError::Refused(e)) => text(400, &e),
+                // Not the request's fault: the disk is full, the folder read-only.
+                Err(SaveError::Io(e)) => text(500, &e),
+            };
+        }
+        _ => parse::<RenderRequest>(body).and_then(|r| start_render(app, &r.output, r.overwrite)),
     })
 }
 
-fn save(app: &App, name: &str) -> Result<String, String> {
-    let path = app
-        .source
-        .path
-        .as_ref()
-        .ok_or("the built-in default scene has no file to save a view into: start the preview with a scene file")?;
-    let current = app.shared.lock().current.clone()?;
-    let eye = Eye::of(&current).ok_or("the scene has no camera pose")?;
+fn save(app: &App, name: &str) -> Result<String, SaveError> {
+    let refused = |e: &str| SaveError::Refused(e.to_string());
+    let path = app.source.path.as_ref().ok_or_else(|| {
+        refused("the built-in default scene has no file to save a view into: start the preview with a scene file")
+    })?;
+    let current = app.shared.lock().current.clone().map_err(SaveError::Refused)?;
+    let eye = Eye::of(&current).ok_or_else(|| refused("the scene has no camera pose"))?;
+    let _writing = app.writing.lock().unwrap_or_else(PoisonError::into_inner);
     save_view::save(path, name, &eye, &current)?;
     Ok(format!("saved [views.{name}] in {}: nullpath render {} --view {name}", path.display(), path.display()))
 }
 
-fn start_render(app: &App, output: &str) -> Result<String, String> {
+fn start_render(app: &App, output: &str, overwrite: bool) -> Result<String, String> {
     let path = full_render::output_path(app.source.directory(), output)?;
     let current = app.shared.lock().current.clone()?;
     let text = match &app.source.path {
@@ -162,6 +175,6 @@ fn start_render(app: &App, output: &str) -> Result<String, String> {
         None => DEFAULT_SCENE.to_string(),
     };
     let source = provenance::Source { name: app.source.name(), text, view: None, time: 0.0 };
-    full_render::start(&app.shared, (*current).clone(), source, path.clone())?;
+    full_render::start(&app.shared, (*current).clone(), source, path.clone(), overwrite)?;
     Ok(format!("rendering to {}", path.display()))
 }
