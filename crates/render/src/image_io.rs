@@ -14,7 +14,9 @@
 
 use crate::color::Rgb;
 use crate::digest::{write_f64s, ContentDigest, Hex};
+use crate::resource::{ReadError, ReadPolicy, Resource};
 use std::fmt;
+use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 /// A linear-RGB raster, row-major from the top-left pixel. Never empty.
@@ -48,7 +50,8 @@ pub enum WrapMode {
     Clamp,
 }
 
-/// Why an image could not be loaded; its `Display` names the file and the reason.
+/// Why an image could not be loaded; its `Display` names the file (as the scene wrote it) and the
+/// reason.
 #[derive(Debug)]
 pub struct ImageLoadError {
     pub path: PathBuf,
@@ -60,8 +63,8 @@ pub struct ImageLoadError {
 pub enum ImageLoadErrorKind {
     /// No file at that path.
     Missing,
-    /// The file exists but could not be read.
-    Io(std::io::Error),
+    /// The file may not be read (see [`crate::resource`]) or could not be.
+    Read(ReadError),
     /// Not a format nullpath reads (or a variant of one the decoder does not support).
     UnsupportedFormat(String),
     /// The file claims a supported format but its data is invalid or truncated.
@@ -75,7 +78,7 @@ impl fmt::Display for ImageLoadError {
         write!(f, "cannot load image '{}': ", self.path.display())?;
         match &self.kind {
             ImageLoadErrorKind::Missing => write!(f, "file not found"),
-            ImageLoadErrorKind::Io(e) => write!(f, "read error: {e}"),
+            ImageLoadErrorKind::Read(e) => write!(f, "{e}"),
             ImageLoadErrorKind::UnsupportedFormat(why) => {
                 write!(f, "unsupported format ({why}); nullpath reads PNG, OpenEXR and Radiance HDR")
             }
@@ -88,7 +91,7 @@ impl fmt::Display for ImageLoadError {
 impl std::error::Error for ImageLoadError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match &self.kind {
-            ImageLoadErrorKind::Io(e) => Some(e),
+            ImageLoadErrorKind::Read(e) => Some(e),
             _ => None,
         }
     }
@@ -115,24 +118,34 @@ impl ImageData {
         })
     }
 
-    /// Reads a PNG, OpenEXR or Radiance HDR file into linear RGB (see the module documentation).
+    /// Reads a PNG, OpenEXR or Radiance HDR file into linear RGB (see the module documentation),
+    /// from a path typed on the command line: any regular file (see [`ReadPolicy::anywhere`]).
     pub fn load(path: &Path) -> Result<Self, ImageLoadError> {
-        let fail = |kind| ImageLoadError { path: path.to_path_buf(), kind };
-        let reader = image::ImageReader::open(path).map_err(|e| {
-            fail(if e.kind() == std::io::ErrorKind::NotFound {
-                ImageLoadErrorKind::Missing
-            } else {
-                ImageLoadErrorKind::Io(e)
+        Self::load_file(&ReadPolicy::anywhere().file(Path::new(""), path))
+    }
+
+    /// Reads the image file `file` (named by a scene) under its policy; errors name it as the scene
+    /// wrote it.
+    pub fn load_file(file: &Resource<'_>) -> Result<Self, ImageLoadError> {
+        let fail = |kind| ImageLoadError { path: file.written().to_path_buf(), kind };
+        let bytes = file.read().map_err(|e| {
+            fail(match e {
+                ReadError::NotFound => ImageLoadErrorKind::Missing,
+                e => ImageLoadErrorKind::Read(e),
             })
         })?;
-        let reader = reader.with_guessed_format().map_err(|e| fail(ImageLoadErrorKind::Io(e)))?;
+        let mut reader = image::ImageReader::new(Cursor::new(bytes));
+        // The extension's format, unless the content says otherwise.
+        if let Ok(format) = image::ImageFormat::from_path(file.written()) {
+            reader.set_format(format);
+        }
+        let reader = reader.with_guessed_format().map_err(|e| fail(ImageLoadErrorKind::Decode(e.to_string())))?;
         if reader.format().is_none() {
             return Err(fail(ImageLoadErrorKind::UnsupportedFormat("unrecognised file type".into())));
         }
         let decoded = reader.decode().map_err(|e| {
             fail(match e {
                 image::ImageError::Unsupported(u) => ImageLoadErrorKind::UnsupportedFormat(u.to_string()),
-                image::ImageError::IoError(io) => ImageLoadErrorKind::Io(io),
                 other => ImageLoadErrorKind::Decode(other.to_string()),
             })
         })?;

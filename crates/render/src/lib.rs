@@ -17,6 +17,7 @@ pub mod integrator;
 pub mod material;
 pub mod propagator;
 pub mod renderer;
+pub mod resource;
 pub mod sampling;
 pub mod scene;
 pub mod settings;

@@ -30,6 +30,10 @@
 //!
 //! Unknown keys are errors everywhere (a misspelt key would otherwise be silently ignored), and no
 //! input makes the loader panic.
+//!
+//! The files a scene names (meshes, images, glTF files and the files those name) are read under
+//! one policy (`render::resource`): inside the scene file's folder tree, or a folder that
+//! [`load_allowing`] is given; regular files only, of bounded size.
 
 mod build;
 mod error;
@@ -40,11 +44,13 @@ pub use error::SceneError;
 
 use error::io_message;
 use reader::Doc;
-use std::path::Path;
+use render::resource::ReadPolicy;
+use std::path::{Path, PathBuf};
 use toml::de::DeTable;
 
 /// Reads and builds the scene file at `path`. Relative paths inside it (OBJ meshes, image
-/// textures, equirectangular skies) are resolved against the directory that holds it.
+/// textures, equirectangular skies, glTF files) are resolved against the directory that holds it,
+/// and only files inside that directory's tree are read.
 pub fn load(path: &Path) -> Result<render::scene::Scene, SceneError> {
     load_view(path, None)
 }
@@ -52,6 +58,17 @@ pub fn load(path: &Path) -> Result<render::scene::Scene, SceneError> {
 /// As [`load`], seen from the scene's view `view` (a `[views.NAME]` camera) instead of its
 /// `[camera]` when given.
 pub fn load_view(path: &Path, view: Option<&str>) -> Result<render::scene::Scene, SceneError> {
+    load_allowing(path, view, &[])
+}
+
+/// As [`load_view`], letting the scene read files inside the folders `allow_read` (and below
+/// them) too, besides its own folder's tree: the person rendering widens the policy, not the
+/// scene file.
+pub fn load_allowing(
+    path: &Path,
+    view: Option<&str>,
+    allow_read: &[PathBuf],
+) -> Result<render::scene::Scene, SceneError> {
     let origin = path.display().to_string();
     let bytes =
         std::fs::read(path).map_err(|e| SceneError::file(&origin, format!("cannot read: {}", io_message(&e))))?;
@@ -74,11 +91,18 @@ pub fn load_view(path: &Path, view: Option<&str>) -> Result<render::scene::Scene
         Some(dir) if !dir.as_os_str().is_empty() => dir,
         _ => Path::new("."),
     };
-    parse_view(&text, &origin, base_dir, view)
+    let mut policy = ReadPolicy::new(base_dir);
+    for dir in allow_read {
+        policy = policy
+            .allow(dir)
+            .map_err(|e| SceneError::file(&origin, format!("cannot allow reading '{}': {e}", dir.display())))?;
+    }
+    parse_with(&text, &origin, base_dir, &policy, view)
 }
 
 /// Builds the scene described by `text`. `origin` names it in error messages (a path, or e.g.
-/// `"<default scene>"`); relative paths inside it are resolved against `base_dir`.
+/// `"<default scene>"`); relative paths inside it are resolved against `base_dir`, and only files
+/// inside `base_dir`'s tree are read.
 pub fn parse(text: &str, origin: &str, base_dir: &Path) -> Result<render::scene::Scene, SceneError> {
     parse_view(text, origin, base_dir, None)
 }
@@ -90,12 +114,23 @@ pub fn parse_view(
     base_dir: &Path,
     view: Option<&str>,
 ) -> Result<render::scene::Scene, SceneError> {
+    parse_with(text, origin, base_dir, &ReadPolicy::new(base_dir), view)
+}
+
+/// As [`parse_view`], reading files under `policy`.
+fn parse_with(
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+    policy: &ReadPolicy,
+    view: Option<&str>,
+) -> Result<render::scene::Scene, SceneError> {
     let root = DeTable::parse(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         SceneError::at(origin, text, offset, None, format!("invalid TOML: {}", e.message().trim_end()))
     })?;
     let doc = Doc { origin, text };
-    build::scene(&doc, &root, base_dir, view)
+    build::scene(&doc, &root, base_dir, policy, view)
 }
 
 /// The names of the `[views.NAME]` cameras in the scene text `text`, in file order; empty when

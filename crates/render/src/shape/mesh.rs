@@ -6,10 +6,10 @@
 
 use super::{Shape, Triangle};
 use crate::geometry::Vec3;
+use crate::resource::{ReadError, Resource};
 use crate::transform::Transform;
 use std::fmt;
-use std::fs::File;
-use std::io::{self, BufRead, BufReader};
+use std::io::{BufRead, Cursor};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -186,11 +186,11 @@ impl TriangleMesh {
     }
 }
 
-/// Why an OBJ file could not be loaded. Every variant names the file.
+/// Why an OBJ file could not be loaded. Every variant names the file, as the scene wrote it.
 #[derive(Debug)]
 pub enum MeshError {
-    /// The file could not be opened (missing, unreadable, a directory…).
-    Open { path: PathBuf, source: io::Error },
+    /// The file may not be read (see [`crate::resource`]) or could not be (missing, a folder…).
+    Open { path: PathBuf, source: ReadError },
     /// The OBJ parser rejected the file; `message` is tobj's.
     Parse { path: PathBuf, message: String },
     /// A face refers to a vertex, texture coordinate or normal that does not exist.
@@ -236,9 +236,12 @@ impl std::error::Error for MeshError {
 /// group of the file goes into one shared [`TriangleMesh`]. Normals and uvs are kept when every
 /// vertex has them. Materials (`mtllib`, `usemtl`) are ignored: the scene file assigns materials.
 /// A mirroring transform reverses the winding so that normals still point outward.
-pub fn load_obj(path: &Path, transform: &Transform) -> Result<Vec<Shape>, MeshError> {
+///
+/// `file` is read under its policy (see [`crate::resource`]); it names no other file.
+pub fn load_obj(file: &Resource<'_>, transform: &Transform) -> Result<Vec<Shape>, MeshError> {
+    let path = file.written();
     let invalid = |defect| MeshError::Invalid { path: path.to_path_buf(), defect };
-    let file = File::open(path).map_err(|source| MeshError::Open { path: path.to_path_buf(), source })?;
+    let bytes = file.read().map_err(|source| MeshError::Open { path: path.to_path_buf(), source })?;
     // Other tobj features (merging, reordering) add fields; their defaults (off) are wanted.
     #[allow(clippy::needless_update)]
     let options = tobj::LoadOptions {
@@ -250,11 +253,12 @@ pub fn load_obj(path: &Path, transform: &Transform) -> Result<Vec<Shape>, MeshEr
     };
     // tobj indexes and unwraps in a few places; a malformed file must be an error, not a crash.
     let parsed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        tobj::load_obj_buf(&mut BufReader::new(file), &options, |_| Err(tobj::LoadError::GenericFailure))
+        // Material libraries are refused unread: the scene file assigns materials.
+        tobj::load_obj_buf(&mut Cursor::new(&bytes), &options, |_| Err(tobj::LoadError::GenericFailure))
     }));
     let models = match parsed {
         Ok(Ok((models, _materials))) => models,
-        Ok(Err(e)) => return Err(parse_error(path, e)),
+        Ok(Err(e)) => return Err(parse_error(path, &bytes, e)),
         Err(_) => {
             return Err(MeshError::Parse {
                 path: path.to_path_buf(),
@@ -301,21 +305,22 @@ pub fn load_obj(path: &Path, transform: &Transform) -> Result<Vec<Shape>, MeshEr
 }
 
 /// tobj's error, made precise where tobj is vague: for an out-of-range face index, find the line.
-fn parse_error(path: &Path, e: tobj::LoadError) -> MeshError {
+fn parse_error(path: &Path, bytes: &[u8], e: tobj::LoadError) -> MeshError {
     use tobj::LoadError as E;
     if matches!(e, E::FaceVertexOutOfBounds | E::FaceTexCoordOutOfBounds | E::FaceNormalOutOfBounds) {
-        if let Some(found) = find_bad_face_index(path) {
+        if let Some(found) = find_bad_face_index(path, bytes) {
             return found;
         }
     }
     MeshError::Parse { path: path.to_path_buf(), message: e.to_string() }
 }
 
-/// Re-reads the file to find the first face index that refers past the data: absolute indices
-/// (1-based) against the file's totals, relative (negative) ones against the entries so far.
-fn find_bad_face_index(path: &Path) -> Option<MeshError> {
+/// Goes through the file's `bytes` again to find the first face index that refers past the data:
+/// absolute indices (1-based) against the file's totals, relative (negative) ones against the
+/// entries so far.
+fn find_bad_face_index(path: &Path, bytes: &[u8]) -> Option<MeshError> {
     const ATTRIBUTES: [(&str, &str); 3] = [("v", "vertex"), ("vt", "texture coordinate"), ("vn", "normal")];
-    let lines: Vec<String> = BufReader::new(File::open(path).ok()?).lines().map_while(Result::ok).collect();
+    let lines: Vec<String> = bytes.lines().map_while(Result::ok).collect();
     let mut totals = [0usize; 3];
     for line in &lines {
         if let Some(k) = line.split_whitespace().next().and_then(|w| ATTRIBUTES.iter().position(|a| a.0 == w)) {
@@ -367,6 +372,12 @@ fn find_bad_face_index(path: &Path) -> Option<MeshError> {
 mod tests {
     use super::*;
     use crate::geometry::Ray;
+    use crate::resource::ReadPolicy;
+
+    /// [`load_obj`] of a path typed on the command line (any regular file).
+    fn load(path: &Path, transform: &Transform) -> Result<Vec<Shape>, MeshError> {
+        load_obj(&ReadPolicy::anywhere().file(Path::new(""), path), transform)
+    }
 
     /// A file in the system temp directory, unique to this test and process, removed on drop.
     struct TempFile(PathBuf);
@@ -424,7 +435,7 @@ f 2/1/6 3/2/6 7/3/6 6/4/6
     #[test]
     fn loads_a_cube_with_normals_and_uvs() {
         let file = TempFile::new("cube", CUBE);
-        let shapes = load_obj(&file.0, &Transform::IDENTITY).unwrap();
+        let shapes = load(&file.0, &Transform::IDENTITY).unwrap();
         assert_eq!(shapes.len(), 12);
         assert!((shapes.iter().map(Shape::area).sum::<f64>() - 6.0).abs() < 1e-12);
         // Every outward ray from the centre leaves through a face whose normal points outward.
@@ -463,7 +474,7 @@ f 2/1/6 3/2/6 7/3/6 6/4/6
         let file = TempFile::new("mirrored", &positions_only(CUBE));
         let t =
             Transform::scale(Vec3::new(-2.0, 1.0, 1.0)).unwrap().then(&Transform::translate(Vec3::new(5.0, 0.0, 0.0)));
-        let shapes = load_obj(&file.0, &t).unwrap();
+        let shapes = load(&file.0, &t).unwrap();
         let b = cube_bounds(&shapes);
         assert!((b.min - Vec3::new(3.0, 0.0, 0.0)).length() < 1e-12);
         assert!((b.max - Vec3::new(5.0, 1.0, 1.0)).length() < 1e-12);
@@ -478,7 +489,7 @@ f 2/1/6 3/2/6 7/3/6 6/4/6
     #[test]
     fn missing_file_names_the_file() {
         let path = std::env::temp_dir().join("nullpath-definitely-missing.obj");
-        let e = load_obj(&path, &Transform::IDENTITY).unwrap_err();
+        let e = load(&path, &Transform::IDENTITY).unwrap_err();
         let message = e.to_string();
         assert!(matches!(e, MeshError::Open { .. }));
         assert!(message.contains("nullpath-definitely-missing.obj") && message.contains("cannot open"), "{message}");
@@ -487,38 +498,38 @@ f 2/1/6 3/2/6 7/3/6 6/4/6
     #[test]
     fn garbage_is_an_error_not_a_panic() {
         let file = TempFile::new("garbage", "this is not\n an obj file \u{1}\u{2}\n");
-        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        let e = load(&file.0, &Transform::IDENTITY).unwrap_err();
         assert!(e.to_string().contains("contains no triangles"), "{e}");
         let file = TempFile::new("bad-number", "v 1 2 banana\nv 0 0 0\nv 1 1 1\nf 1 2 3\n");
-        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        let e = load(&file.0, &Transform::IDENTITY).unwrap_err();
         assert!(matches!(e, MeshError::Parse { .. }), "{e}");
         assert!(e.to_string().contains("position parse error") && e.to_string().contains("bad-number"), "{e}");
         let file = TempFile::new("binary", "v 1 2 3\n\u{0}\u{ff}\u{fe}f 1 1 1\nvt 0\n");
-        assert!(load_obj(&file.0, &Transform::IDENTITY).is_err());
+        assert!(load(&file.0, &Transform::IDENTITY).is_err());
     }
 
     #[test]
     fn out_of_range_index_points_at_the_line() {
         let file = TempFile::new("range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
-        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        let e = load(&file.0, &Transform::IDENTITY).unwrap_err();
         let message = e.to_string();
         assert!(matches!(e, MeshError::FaceIndex { line: 5, index: 9, count: 3, .. }), "{message}");
         assert!(message.contains("line 5") && message.contains("vertex 9"), "{message}");
         let file = TempFile::new("relative", "v 0 0 0\nv 1 0 0\nf -1 -2 -4\n");
-        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        let e = load(&file.0, &Transform::IDENTITY).unwrap_err();
         assert!(matches!(e, MeshError::FaceIndex { line: 3, index: -4, count: 2, .. }), "{e}");
         let file = TempFile::new("normal-range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n");
-        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        let e = load(&file.0, &Transform::IDENTITY).unwrap_err();
         assert!(matches!(e, MeshError::FaceIndex { attribute: "normal", index: 2, .. }), "{e}");
     }
 
     #[test]
     fn non_finite_vertex_and_degenerate_meshes_are_rejected() {
         let file = TempFile::new("nan", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
-        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        let e = load(&file.0, &Transform::IDENTITY).unwrap_err();
         assert!(e.to_string().contains("non-finite position"), "{e}");
         let file = TempFile::new("flat", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
-        let e = load_obj(&file.0, &Transform::IDENTITY).unwrap_err();
+        let e = load(&file.0, &Transform::IDENTITY).unwrap_err();
         assert!(e.to_string().contains("no triangles"), "{e}");
         assert_eq!(
             TriangleMesh::new(vec![Vec3::ZERO], None, None, vec![[0, 0, 1]]).unwrap_err(),

@@ -52,11 +52,12 @@ impl Builder<'_> {
         file: &Node<'_>,
         placement: &Transform,
     ) -> Result<Vec<Object>> {
-        let path = self.resolve(file.str()?);
-        let in_file = |e: String| file.err(format!("glTF file '{}': {e}", path.display()));
-        let scene = gltf_import::import(&path).map_err(in_file)?;
+        let resource = self.resolve(file.str()?);
+        let written = resource.written().display();
+        let in_file = |e: String| file.err(format!("glTF file '{written}': {e}"));
+        let scene = gltf_import::import(&resource, self.policy).map_err(in_file)?;
         for w in &scene.warnings {
-            eprintln!("warning: glTF file '{}': {w}", path.display());
+            eprintln!("warning: glTF file '{written}': {w}");
         }
         for camera in &scene.cameras {
             let to_world = camera.transform.then(placement);

@@ -182,12 +182,12 @@ impl Builder<'_> {
 
     /// The image named by a `file` value, relative to the scene file; loaded once per path.
     pub(super) fn image(&mut self, file: &Node<'_>) -> Result<Arc<ImageData>> {
-        let path = self.resolve(file.str()?);
-        if let Some(image) = self.images.get(&path) {
+        let resource = self.resolve(file.str()?);
+        if let Some(image) = self.images.get(resource.path()) {
             return Ok(Arc::clone(image));
         }
-        let image = Arc::new(ImageData::load(&path).map_err(|e| file.err(e.to_string()))?);
-        self.images.insert(path, Arc::clone(&image));
+        let image = Arc::new(ImageData::load_file(&resource).map_err(|e| file.err(e.to_string()))?);
+        self.images.insert(resource.path().to_path_buf(), Arc::clone(&image));
         Ok(image)
     }
 }

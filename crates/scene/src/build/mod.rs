@@ -14,6 +14,7 @@ use crate::reader::{num, Doc, Result, Table};
 use render::geometry::Vec3;
 use render::image_io::ImageData;
 use render::material::Material;
+use render::resource::{ReadPolicy, Resource};
 use render::scene::Scene;
 use render::sky::Sky;
 use render::world::{Object, World};
@@ -24,9 +25,11 @@ use std::sync::Arc;
 use toml::de::DeTable;
 use toml::Spanned;
 
-/// State shared by the sections: where relative paths start, loaded images, materials so far.
+/// State shared by the sections: where relative paths start, which files may be read, loaded
+/// images, materials so far.
 pub(crate) struct Builder<'a> {
     base_dir: &'a Path,
+    policy: &'a ReadPolicy,
     /// Images by resolved path, so that a file used twice is loaded once.
     images: HashMap<PathBuf, Arc<ImageData>>,
     materials: Vec<Material>,
@@ -43,11 +46,13 @@ pub(crate) struct Builder<'a> {
 const TOP_LEVEL: &[&str] =
     &["spacetime", "camera", "views", "animation", "render", "sky", "lower", "materials", "objects", "accretion_disk"];
 
-/// Builds the scene described by the parsed document `root`.
+/// Builds the scene described by the parsed document `root`, whose relative paths start at
+/// `base_dir`, reading files under `policy`.
 pub(crate) fn scene<'a>(
     doc: &'a Doc<'a>,
     root: &'a Spanned<DeTable<'a>>,
     base_dir: &'a Path,
+    policy: &'a ReadPolicy,
     view: Option<&str>,
 ) -> Result<Scene> {
     let root = Table::root(doc, root, TOP_LEVEL)?;
@@ -58,6 +63,7 @@ pub(crate) fn scene<'a>(
     let (spacetime, axis) = spacetime;
     let mut b = Builder {
         base_dir,
+        policy,
         images: HashMap::new(),
         materials: Vec::new(),
         material_names: HashMap::new(),
@@ -251,10 +257,10 @@ fn wormhole(t: &Table<'_>) -> Result<Spacetime> {
     checked(t, "lensing_width", Spacetime::wormhole(throat, length, width))
 }
 
-impl Builder<'_> {
-    /// A relative path from the scene file, resolved against its directory.
-    fn resolve(&self, file: &str) -> PathBuf {
-        self.base_dir.join(file)
+impl<'a> Builder<'a> {
+    /// A path from the scene file, relative to its folder, to be read under the policy.
+    fn resolve(&self, file: &str) -> Resource<'a> {
+        self.policy.file(self.base_dir, file)
     }
 
     /// `region = "upper" | "lower"` of a table (default upper); `lower` only in a wormhole.

@@ -206,8 +206,7 @@ impl Builder<'_> {
             ),
             _ => {
                 let file = t.require("file")?;
-                let path = self.resolve(file.str()?);
-                return load_obj(&path, placement).map_err(|e| file.err(e.to_string()));
+                return load_obj(&self.resolve(file.str()?), placement).map_err(|e| file.err(e.to_string()));
             }
         };
         built.map(|s| vec![s]).map_err(|e| shape_error(&t, e, transform_loc))

@@ -14,14 +14,15 @@
 //! the shading normal ([`NormalMap`]); alpha, the metallic–roughness and occlusion textures are
 //! ignored (a warning names the material).
 
-use super::named;
+use super::check::view_in_buffer;
+use super::source::Sources;
+use super::{contained, named, short};
 use render::color::Rgb;
 use render::image_io::{srgb_to_linear, ImageData};
 use render::material::microfacet::SMOOTH_ALPHA;
 use render::material::{ConductorFresnel, Material, NormalMap};
 use render::texture::Texture;
 use render::world::Emission;
-use std::path::Path;
 use std::sync::Arc;
 
 /// Index of refraction of glTF's dielectrics: its `F0 = 0.04` is `((n − 1)/(n + 1))²` at 1.5.
@@ -43,8 +44,8 @@ pub(crate) struct GltfMaterial {
 /// Every material of the document, in order.
 pub(super) fn materials(
     document: &gltf::Document,
-    base: &Path,
-    buffers: &[gltf::buffer::Data],
+    sources: Sources<'_>,
+    buffers: &[Vec<u8>],
     warnings: &mut Vec<String>,
 ) -> Result<Vec<GltfMaterial>, String> {
     let mut images: Vec<Option<Decoded>> = vec![None; document.images().len()];
@@ -62,9 +63,9 @@ pub(super) fn materials(
         if !ignored.is_empty() {
             warnings.push(format!("{name}: its {} texture(s) are ignored", ignored.join(", ")));
         }
-        let base_colour = base_colour(&m, &name, base, buffers, &mut images, warnings)?;
+        let base_colour = base_colour(&m, &name, sources, buffers, &mut images, warnings)?;
         let mut material = surface(&m, base_colour);
-        if let Some(map) = normal_map(&m, &name, base, buffers, warnings)? {
+        if let Some(map) = normal_map(&m, &name, sources, buffers, warnings)? {
             material = Material::NormalMapped { base: Box::new(material), map };
         }
         mapped.push(GltfMaterial { name: m.name().map(str::to_string), material, emission: emission(&m, &name)? });
@@ -109,8 +110,8 @@ fn emission(m: &gltf::Material<'_>, name: &str) -> Result<Option<Emission>, Stri
 fn base_colour(
     m: &gltf::Material<'_>,
     name: &str,
-    base: &Path,
-    buffers: &[gltf::buffer::Data],
+    sources: Sources<'_>,
+    buffers: &[Vec<u8>],
     images: &mut [Option<Decoded>],
     warnings: &mut Vec<String>,
 ) -> Result<Texture, String> {
@@ -127,7 +128,7 @@ fn base_colour(
         warnings.push(format!("{name}: its base colour uses TEXCOORD_{}; TEXCOORD_0 is used", info.tex_coord()));
     }
     let image = info.texture().source();
-    let (width, height, pixels) = decode(&image, base, buffers, images)?;
+    let (width, height, pixels) = decode(&image, sources, buffers, images)?;
     let scaled: Vec<Rgb> = pixels.iter().map(|&c| c * factor).collect();
     let data = ImageData::new(width, height, scaled)
         .ok_or_else(|| format!("{}: has no pixels", named("image", image.index(), image.name())))?;
@@ -138,8 +139,8 @@ fn base_colour(
 fn normal_map(
     m: &gltf::Material<'_>,
     name: &str,
-    base: &Path,
-    buffers: &[gltf::buffer::Data],
+    sources: Sources<'_>,
+    buffers: &[Vec<u8>],
     warnings: &mut Vec<String>,
 ) -> Result<Option<NormalMap>, String> {
     let Some(info) = m.normal_texture() else { return Ok(None) };
@@ -151,7 +152,7 @@ fn normal_map(
         return Err(format!("{name}: its normalTexture.scale {} is not finite", info.scale()));
     }
     let image = info.texture().source();
-    let (width, height, pixels) = load(&image, base, buffers, Encoding::Linear)?;
+    let (width, height, pixels) = load(&image, sources, buffers, Encoding::Linear)?;
     let data = ImageData::new(width, height, pixels)
         .ok_or_else(|| format!("{}: has no pixels", named("image", image.index(), image.name())))?;
     Ok(Some(NormalMap { image: Arc::new(data), scale }))
@@ -167,14 +168,14 @@ enum Encoding {
 /// The linear RGB pixels of an sRGB-encoded image, decoded once per image.
 fn decode(
     image: &gltf::Image<'_>,
-    base: &Path,
-    buffers: &[gltf::buffer::Data],
+    sources: Sources<'_>,
+    buffers: &[Vec<u8>],
     images: &mut [Option<Decoded>],
 ) -> Result<Decoded, String> {
     if let Some(Some(decoded)) = images.get(image.index()) {
         return Ok(decoded.clone());
     }
-    let (width, height, pixels) = load(image, base, buffers, Encoding::Srgb)?;
+    let (width, height, pixels) = load(image, sources, buffers, Encoding::Srgb)?;
     let decoded = (width, height, Arc::new(pixels));
     if let Some(slot) = images.get_mut(image.index()) {
         *slot = Some(decoded.clone());
@@ -182,62 +183,51 @@ fn decode(
     Ok(decoded)
 }
 
-/// The pixels of `image`, as `encoding` says its values are meant.
+/// The pixels of `image`, as `encoding` says its values are meant. Its bytes come from a `data:`
+/// URI, a file (see [`super::source`]) or a buffer view; PNG and JPEG are decoded.
 fn load(
     image: &gltf::Image<'_>,
-    base: &Path,
-    buffers: &[gltf::buffer::Data],
+    sources: Sources<'_>,
+    buffers: &[Vec<u8>],
     encoding: Encoding,
 ) -> Result<(usize, usize, Vec<Rgb>), String> {
     let what = named("image", image.index(), image.name());
-    let source = match image.source() {
-        gltf::image::Source::Uri { uri, .. } => format!("{what} ('{}')", super::short(uri)),
-        gltf::image::Source::View { .. } => what,
+    let (what, bytes, mime_type) = match image.source() {
+        gltf::image::Source::Uri { uri, mime_type } => {
+            let what = format!("{what} ('{}')", short(uri));
+            let bytes = sources.read(uri).map_err(|e| format!("{what}: {e}"))?;
+            (what, bytes, mime_type)
+        }
+        gltf::image::Source::View { view, mime_type } => {
+            view_in_buffer(&view, buffers).map_err(|e| format!("{what}: {e}"))?;
+            let bytes = buffers
+                .get(view.buffer().index())
+                .and_then(|b| b.get(view.offset()..view.offset() + view.length()))
+                .ok_or_else(|| format!("{what}: its bufferView lies outside its buffer"))?;
+            (what, bytes.to_vec(), Some(mime_type))
+        }
     };
-    let data = super::contained(|| gltf::image::Data::from_source(image.source(), Some(base), buffers), &source)?
-        .map_err(|e| format!("{source}: cannot load: {e}"))?;
-    let pixels = linear_pixels(&data, encoding).ok_or_else(|| format!("{source}: unsupported pixel format"))?;
-    Ok((data.width as usize, data.height as usize, pixels))
+    let format = match mime_type {
+        Some("image/png") => image::ImageFormat::Png,
+        Some("image/jpeg") => image::ImageFormat::Jpeg,
+        _ => match image::guess_format(&bytes) {
+            Ok(format @ (image::ImageFormat::Png | image::ImageFormat::Jpeg)) => format,
+            _ => return Err(format!("{what}: neither PNG nor JPEG, the formats of glTF images")),
+        },
+    };
+    let decoded = contained(|| image::load_from_memory_with_format(&bytes, format), &what)?
+        .map_err(|e| format!("{what}: cannot decode: {e}"))?;
+    let (width, height) = (decoded.width() as usize, decoded.height() as usize);
+    Ok((width, height, linear_pixels(decoded, encoding)))
 }
 
-/// 8- and 16-bit grey, grey–alpha, RGB and RGBA images, sRGB-decoded if `encoding` says so
-/// (alpha dropped), row by row from the top; `None` for float formats or data that does not fill
-/// the image.
-fn linear_pixels(data: &gltf::image::Data, encoding: Encoding) -> Option<Vec<Rgb>> {
-    use gltf::image::Format as F;
-    let (channels, bytes) = match data.format {
-        F::R8 => (1, 1),
-        F::R8G8 => (2, 1),
-        F::R8G8B8 => (3, 1),
-        F::R8G8B8A8 => (4, 1),
-        F::R16 => (1, 2),
-        F::R16G16 => (2, 2),
-        F::R16G16B16 => (3, 2),
-        F::R16G16B16A16 => (4, 2),
-        F::R32G32B32FLOAT | F::R32G32B32A32FLOAT => return None,
-    };
-    let count = data.width as usize * data.height as usize;
-    let stride = channels * bytes;
-    if data.pixels.len() < count * stride {
-        return None;
-    }
+/// The image's pixels as linear RGB, row by row from the top, sRGB-decoded if `encoding` says so;
+/// grey is spread to the three channels and alpha dropped.
+fn linear_pixels(image: image::DynamicImage, encoding: Encoding) -> Vec<Rgb> {
     let decode = |v: f32| match encoding {
         Encoding::Srgb => srgb_to_linear(v),
         Encoding::Linear => v,
     };
-    let channel = |px: &[u8], c: usize| -> f32 {
-        let c = if channels < 3 { 0 } else { c };
-        if bytes == 1 {
-            decode(f32::from(px[c]) / 255.0)
-        } else {
-            decode(f32::from(u16::from_le_bytes([px[2 * c], px[2 * c + 1]])) / 65535.0)
-        }
-    };
-    Some(
-        data.pixels
-            .chunks_exact(stride)
-            .take(count)
-            .map(|px| Rgb::new(channel(px, 0), channel(px, 1), channel(px, 2)))
-            .collect(),
-    )
+    // 8- and 16-bit values become fractions of their largest value.
+    image.into_rgb32f().pixels().map(|p| Rgb::new(decode(p.0[0]), decode(p.0[1]), decode(p.0[2]))).collect()
 }

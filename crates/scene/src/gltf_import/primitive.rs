@@ -1,5 +1,6 @@
 //! One glTF mesh primitive: triangles with their vertex data, in the mesh's own space.
 
+use super::check::{self, INDEX, TEXCOORD, VEC3_FLOAT};
 use super::named;
 use render::geometry::Vec3;
 use render::shape::TriangleMesh;
@@ -20,17 +21,28 @@ pub(crate) struct Primitive {
 }
 
 impl Primitive {
-    /// Reads primitive `p` of `mesh` from the buffers.
-    pub(crate) fn read(
-        mesh: &gltf::Mesh<'_>,
-        p: &gltf::Primitive<'_>,
-        buffers: &[gltf::buffer::Data],
-    ) -> Result<Self, String> {
+    /// Reads primitive `p` of `mesh` from the buffers' data.
+    pub(crate) fn read(mesh: &gltf::Mesh<'_>, p: &gltf::Primitive<'_>, buffers: &[Vec<u8>]) -> Result<Self, String> {
         let name = format!("{} primitive {}", named("mesh", mesh.index(), mesh.name()), p.index());
         if p.mode() != gltf::mesh::Mode::Triangles {
             return Err(format!("{name}: its mode is {:?}; only triangles (mode 4) are supported", p.mode()));
         }
-        let reader = p.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+        // The readers below trust these; each is checked first (see `check`).
+        let Some(position) = p.get(&gltf::Semantic::Positions) else {
+            return Err(format!("{name}: it has no POSITION attribute"));
+        };
+        let attributes = [
+            (Some(position), "POSITION", VEC3_FLOAT),
+            (p.get(&gltf::Semantic::Normals), "NORMAL", VEC3_FLOAT),
+            (p.get(&gltf::Semantic::TexCoords(0)), "TEXCOORD_0", TEXCOORD),
+            (p.indices(), "indices", INDEX),
+        ];
+        for (accessor, what, kinds) in attributes {
+            if let Some(accessor) = accessor {
+                check::accessor(&accessor, what, kinds, buffers).map_err(|e| format!("{name}: {e}"))?;
+            }
+        }
+        let reader = p.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
         let out_of_range = |attribute: &str| format!("{name}: the {attribute} data lies outside its buffer");
         let positions: Vec<Vec3> = reader
             .read_positions()
@@ -75,6 +87,11 @@ impl Primitive {
         // it later cannot fail but for its transform.
         primitive.mesh(&Transform::IDENTITY)?;
         Ok(primitive)
+    }
+
+    /// How many triangles it has.
+    pub(crate) fn triangle_count(&self) -> usize {
+        self.indices.len()
     }
 
     /// The primitive's triangles placed by `transform` (object to world).
