@@ -140,6 +140,10 @@ pub struct RenderOptions {
     /// it. Path tracing only.
     #[arg(long)]
     spectral: bool,
+    /// Let the scene read files (meshes, images, glTF files and theirs) inside DIR too, not only
+    /// inside its own folder; repeatable. See "Files a scene reads" in docs/scene-format.md.
+    #[arg(long, value_name = "DIR")]
+    allow_read: Vec<PathBuf>,
     /// No progress bar or summary.
     #[arg(long)]
     pub quiet: bool,
@@ -185,7 +189,10 @@ pub fn load_scene(path: Option<&Path>, view: Option<&str>) -> Result<Scene, Stri
 impl RenderOptions {
     /// The scene at `path` (or the default scene) from the chosen view, with the overrides.
     pub fn load(&self, path: Option<&Path>) -> Result<Scene, String> {
-        let mut scene = load_scene(path, self.view.as_deref())?;
+        let mut scene = match path {
+            Some(p) => scene::load_allowing(p, self.view.as_deref(), &self.allow_read).map_err(|e| e.to_string())?,
+            None => load_scene(None, self.view.as_deref())?,
+        };
         self.apply(&mut scene)?;
         Ok(scene)
     }
