@@ -127,7 +127,7 @@ fn the_triangle_loads_and_is_one_object() {
 }
 
 #[test]
-fn glb_buffer_uris_that_leave_the_scene_folder_are_refused_with_the_uri_named() {
+fn gltf_buffer_uris_that_leave_the_scene_folder_are_refused_with_the_uri_named() {
     let (scene, outside) = folders("traversal");
     let secret = outside.join("tri.bin");
     #[cfg(unix)]
