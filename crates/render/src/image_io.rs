@@ -32,7 +32,7 @@ pub struct ImageData {
 
 impl fmt::Debug for ImageData {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let digest = self.digest.get(|h| write_f64s(h, self.pixels.iter().flat_map(|p| [p.r, p.g, p.b])));
+        let digest = self.digest.get(|h| write_f64s(h, self.pixels.iter().flat_map(|p| p.to_array().map(f64::from))));
         f.debug_struct("ImageData")
             .field("width", &self.width)
             .field("height", &self.height)

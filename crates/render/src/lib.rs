@@ -9,6 +9,7 @@ pub mod camera;
 pub mod camera_path;
 pub mod color;
 pub mod crossing;
+pub mod digest;
 pub mod emission;
 pub mod film;
 pub mod geometry;

@@ -5,11 +5,14 @@
 //! each with its own objects, lights and sky (world coordinates of a region are its own).
 
 use crate::accel::Bvh;
+use crate::digest::Hex;
 use crate::geometry::{Aabb, Ray, Vec3};
 use crate::material::Material;
-use crate::shape::{Shape, SurfaceHit};
+use crate::shape::{Shape, SurfaceHit, TriangleMesh};
 use crate::sky::Sky;
 use spacetime::Region;
+use std::hash::Hasher;
+use std::sync::Arc;
 
 pub use crate::emission::{Emission, Profile, Radiance};
 
@@ -28,7 +31,7 @@ pub struct Object {
 }
 
 /// A region's contents.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 struct RegionScene {
     objects: Vec<Object>,
     /// Each object's bounds, kept because curved ray steps ask for them many times per step.
@@ -50,6 +53,65 @@ struct RegionScene {
     empty_radius: f64,
     /// A box about the world origin that no object reaches into ([`empty_box`]).
     empty_box: Option<Aabb>,
+}
+
+/// Everything but the objects and the sky is built from them, so `Debug` (the scene's identity:
+/// see [`crate::digest`]) shows those two alone.
+impl std::fmt::Debug for RegionScene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RegionScene").field("objects", &ObjectList(&self.objects)).field("sky", &self.sky).finish()
+    }
+}
+
+/// Objects as the scene's identity shows them: each run of triangles of one mesh with one
+/// material and emission (a mesh file's triangles) as one entry, the mesh's digest and a digest
+/// of the triangles' indices, so that the text grows by a few bytes per mesh, not per triangle.
+struct ObjectList<'a>(&'a [Object]);
+
+/// A run of triangle objects of one mesh sharing `material` and `emission`.
+#[derive(Debug)]
+#[allow(dead_code)] // Read by `Debug` only.
+struct TriangleRun<'a> {
+    mesh: &'a TriangleMesh,
+    count: usize,
+    indices: Hex,
+    material: usize,
+    emission: &'a Option<Emission>,
+}
+
+impl std::fmt::Debug for ObjectList<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut list = f.debug_list();
+        let mut rest = self.0;
+        while let Some(first) = rest.first() {
+            let Shape::Triangle(triangle) = &first.shape else {
+                list.entry(first);
+                rest = &rest[1..];
+                continue;
+            };
+            let same_run = |o: &Object| {
+                matches!(&o.shape, Shape::Triangle(t) if Arc::ptr_eq(t.mesh(), triangle.mesh()))
+                    && o.material == first.material
+                    && o.emission == first.emission
+            };
+            let count = rest.iter().position(|o| !same_run(o)).unwrap_or(rest.len());
+            let mut indices = std::hash::DefaultHasher::new();
+            for o in &rest[..count] {
+                if let Shape::Triangle(t) = &o.shape {
+                    indices.write_usize(t.index());
+                }
+            }
+            list.entry(&TriangleRun {
+                mesh: triangle.mesh(),
+                count,
+                indices: Hex(indices.finish()),
+                material: first.material,
+                emission: &first.emission,
+            });
+            rest = &rest[count..];
+        }
+        list.finish()
+    }
 }
 
 impl RegionScene {
@@ -429,6 +491,35 @@ mod tests {
             (vec![light(0.0, 1.0), light(5.0, 3.0)], Sky::Constant(Rgb::ZERO)),
             (Vec::new(), Sky::Constant(Rgb::ZERO)),
         )
+    }
+
+    /// A strip of `n` triangles in the plane z = `z`, as one mesh shared by `n` objects.
+    fn strip(n: u32, z: f64) -> Vec<Object> {
+        let positions = (0..n + 2).map(|i| Vec3::new(f64::from(i / 2), f64::from(i % 2), z)).collect();
+        let indices = (0..n).map(|i| if i % 2 == 0 { [i, i + 1, i + 2] } else { [i + 1, i, i + 2] }).collect();
+        let mesh = Arc::new(TriangleMesh::new(positions, None, None, indices).unwrap());
+        TriangleMesh::shapes(&mesh).into_iter().map(|shape| Object { shape, material: 0, emission: None }).collect()
+    }
+
+    fn identity(objects: Vec<Object>) -> String {
+        let grey = Material::Diffuse { reflectance: Texture::from(Rgb::splat(0.5)) };
+        let world = World::new(vec![grey], (objects, Sky::Constant(Rgb::ZERO)), (Vec::new(), Sky::Constant(Rgb::ZERO)));
+        format!("{world:?}")
+    }
+
+    /// The identity of a mesh's objects does not grow with the mesh (it once printed the whole
+    /// mesh once per triangle: quadratic), and still tells meshes apart by their content.
+    #[test]
+    fn a_meshs_identity_does_not_grow_with_it() {
+        let small = identity(strip(10, 0.0));
+        let large = identity(strip(10_000, 0.0));
+        // Only the counts grow, by their digits.
+        assert!(large.len() <= small.len() + 16, "{} bytes for 10 triangles, {} for 10 000", small.len(), large.len());
+        assert_ne!(identity(strip(10, 0.0)), identity(strip(10, 1.0)), "the vertices are part of it");
+        assert_eq!(identity(strip(10, 0.0)), small, "the same content, the same identity");
+        let mut part = strip(10, 0.0);
+        part.remove(3);
+        assert_ne!(identity(part), small, "which triangles are objects is part of it");
     }
 
     #[test]

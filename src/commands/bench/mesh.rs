@@ -14,6 +14,7 @@ use render::transform::Transform;
 use render::world::{Object, World};
 use spacetime::Region;
 use std::f64::consts::PI;
+use std::fmt::Write as _;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -62,6 +63,65 @@ fn rock(centre: Vec3, radius: f64, lumps: f64) -> TriangleMesh {
     }
     // The grid's data is valid by construction.
     TriangleMesh::new(positions, Some(normals), None, indices).unwrap_or_else(|e| panic!("rock mesh: {e}"))
+}
+
+/// What the user's path took for a rock of a million triangles written as an OBJ file: the
+/// scene file read as `nullpath render` reads it, and the image metadata it writes.
+pub struct UserPath {
+    pub triangles: usize,
+    /// Seconds to load the scene: parse the OBJ, build the mesh, the world and its BVH.
+    pub load_seconds: f64,
+    /// Seconds for the metadata, whose sampling hash is the scene's whole identity.
+    pub metadata_seconds: f64,
+}
+
+/// Writes the rock as an OBJ file beside a scene file naming it, in a fresh temporary folder,
+/// then loads the scene and makes its metadata as `nullpath render` does. A step that grows
+/// faster than the mesh on that path (the metadata's hash once printed the shared mesh once per
+/// triangle) shows here, where building the world directly would skip it.
+pub fn user_path() -> Result<UserPath, String> {
+    let folder = std::env::temp_dir().join(format!("nullpath-bench-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    let result = load_written_rock(&folder);
+    // The folder is this process's own; a failure to remove it leaves only a temporary file.
+    let _ = std::fs::remove_dir_all(&folder);
+    result
+}
+
+fn load_written_rock(folder: &std::path::Path) -> Result<UserPath, String> {
+    let mesh = rock(Vec3::ZERO, 1.0, 5.0);
+    let mut obj = String::with_capacity(64 * mesh.positions().len());
+    for p in mesh.positions() {
+        let _ = writeln!(obj, "v {} {} {}", p.x, p.y, p.z);
+    }
+    for [a, b, c] in mesh.indices() {
+        let _ = writeln!(obj, "f {} {} {}", a + 1, b + 1, c + 1);
+    }
+    let write = |name: &str, text: &str| {
+        let path = folder.join(name);
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))
+    };
+    write("rock.obj", &obj)?;
+    write(
+        "rock.toml",
+        "[camera]\nposition = [0, 0, 4]\nlook_at = [0, 0, 0]\n\n[render]\nwidth = 64\nheight = 48\nspp = 1\n\n\
+         [materials.stone]\ntype = \"diffuse\"\nreflectance = 0.5\n\n\
+         [[objects]]\nshape = { type = \"mesh\", file = \"rock.obj\" }\nmaterial = \"stone\"\n",
+    )?;
+    let scene_path = folder.join("rock.toml");
+    let start = Instant::now();
+    let scene = scene::load(&scene_path).map_err(|e| e.to_string())?;
+    let load_seconds = start.elapsed().as_secs_f64();
+    let source = crate::commands::provenance::Source {
+        name: scene_path.display().to_string(),
+        text: String::new(),
+        view: None,
+        time: 0.0,
+    };
+    let start = Instant::now();
+    std::hint::black_box(crate::commands::provenance::scene_metadata(&scene, &source));
+    let metadata_seconds = start.elapsed().as_secs_f64();
+    Ok(UserPath { triangles: mesh.indices().len(), load_seconds, metadata_seconds })
 }
 
 /// Resident memory of this process, in bytes (Linux `/proc/self/statm`).

@@ -23,12 +23,19 @@ use std::sync::Arc;
 
 /// A mesh's triangles in its object space, with a BVH over them and the cumulative distribution
 /// of their (object-space) areas.
-#[derive(Debug)]
 pub struct InstancedMesh {
     triangles: Vec<Triangle>,
     bvh: Bvh,
     /// Running sums of the triangles' areas, ending at the mesh's area.
     area_cdf: Vec<f64>,
+}
+
+/// The triangles, their BVH and areas follow from the mesh, so `Debug` shows the mesh alone (as
+/// its digest: see [`TriangleMesh`]).
+impl std::fmt::Debug for InstancedMesh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("InstancedMesh").field("mesh", self.mesh()).finish()
+    }
 }
 
 impl InstancedMesh {

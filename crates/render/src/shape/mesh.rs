@@ -5,10 +5,12 @@
 //! A [`Triangle`] is an `Arc` to the mesh plus an index.
 
 use super::{Shape, Triangle};
+use crate::digest::{write_f64s, ContentDigest, Hex};
 use crate::geometry::Vec3;
 use crate::resource::{ReadError, Resource};
 use crate::transform::Transform;
 use std::fmt;
+use std::hash::Hasher;
 use std::io::{BufRead, Cursor};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -16,13 +18,27 @@ use std::sync::Arc;
 /// World-space vertex data of a triangle mesh. Invariants, checked by [`TriangleMesh::new`]:
 /// every index is in range, positions and normals are finite, attribute arrays have one entry per
 /// vertex, and (with normals) each triangle's winding agrees with its vertex normals.
-#[derive(Debug)]
+///
+/// `Debug` shows the counts and a digest of the data, not the data: every triangle refers to
+/// its mesh, so a scene's `Debug` text (its identity, see [`crate::digest`]) stays linear in
+/// the mesh's size.
 pub struct TriangleMesh {
     positions: Vec<Vec3>,
     /// Unit length, or zero where the source gave a zero normal (shading then uses `ng`).
     normals: Option<Vec<Vec3>>,
     uvs: Option<Vec<[f64; 2]>>,
     indices: Vec<[u32; 3]>,
+    digest: ContentDigest,
+}
+
+impl fmt::Debug for TriangleMesh {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("TriangleMesh")
+            .field("vertices", &self.positions.len())
+            .field("triangles", &self.indices.len())
+            .field("content", &Hex(self.digest()))
+            .finish()
+    }
 }
 
 /// What is wrong with a mesh's data.
@@ -121,7 +137,23 @@ impl TriangleMesh {
                 }
             }
         }
-        Ok(Self { positions, normals, uvs, indices })
+        Ok(Self { positions, normals, uvs, indices, digest: ContentDigest::default() })
+    }
+
+    /// A digest of the vertex data and the triangles, computed on first use.
+    pub fn digest(&self) -> u64 {
+        let components = |v: &Vec3| [v.x, v.y, v.z];
+        self.digest.get(|h| {
+            h.write_usize(self.positions.len());
+            write_f64s(h, self.positions.iter().flat_map(components));
+            // Which attributes are present is part of the content, not only their values.
+            h.write_u8(u8::from(self.normals.is_some()) | u8::from(self.uvs.is_some()) << 1);
+            write_f64s(h, self.normals.iter().flatten().flat_map(components));
+            write_f64s(h, self.uvs.iter().flatten().flatten().copied());
+            for triangle in &self.indices {
+                triangle.iter().for_each(|&i| h.write_u32(i));
+            }
+        })
     }
 
     /// As [`TriangleMesh::new`], from object-space data with `transform` (object to world) baked
