@@ -158,6 +158,9 @@ fn cameras_where_nothing_can_stay_at_rest() {
     assert!(scene::parse(&format!("{kerr}{}", camera("[0, 1.9, 0]")), "ok.toml", Path::new(".")).is_ok());
     let wormhole = "[spacetime]\ntype = \"ellis\"\nthroat = 1\n";
     check(&format!("{wormhole}{}", camera("[0, 0, 0.99]")), 5, "camera.position", &["throat"]);
+    // Every view is checked at load, not only when it is rendered (`--view`).
+    let view = "[views.inside]\nposition = [0, 0, 1.5]\nlook_at = [0, 0, 5]\nfov = 40\n";
+    check(&format!("{hole}{}{view}", camera("[0, 0, 10]")), 9, "views.inside.position", &["inside the event horizon"]);
     let interstellar = "[spacetime]\ntype = \"wormhole\"\nthroat = 1\nlength = 0.01\nlensing_width = 0.05\n";
     check(&format!("{interstellar}{}", camera("[0, 0.99, 0]")), 7, "camera.position", &["throat"]);
     assert!(scene::parse(&format!("{interstellar}{}", camera("[0, 1.01, 0]")), "ok.toml", Path::new(".")).is_ok());
@@ -642,4 +645,28 @@ fn spectral_channels_are_checked_where_they_are_written() {
     );
     check(&format!("{CAMERA}[render]\nspectrum = {{ count = 0 }}\n"), 6, "render.spectrum.count", &["from 1 to 4096"]);
     check(&format!("{CAMERA}[render]\nspectrum = {{ step = 5 }}\n"), 6, "render.spectrum.step", &["unknown field"]);
+}
+
+/// Values that parse but would give a black or NaN image, or a run thousands of times longer,
+/// are refused with the range and the reason.
+#[test]
+fn extreme_values_are_refused_with_their_range() {
+    let stars = "[sky]\ntype = \"stars\"\nbrightness = 1e36\n";
+    check(&format!("{CAMERA}{stars}"), 7, "sky.brightness", &["too bright", "at most"]);
+    let lamp = "[[objects]]\nshape = { type = \"sphere\", center = [0, 0, 0], radius = 1 }\nemission = 1e30\n";
+    check(&format!("{CAMERA}{lamp}"), 7, "objects[0].emission", &["too bright", "at most 1e20"]);
+    let wormhole = "[spacetime]\ntype = \"wormhole\"\nthroat = 1\nlensing_width = 1e-300\n";
+    check(&format!("{wormhole}{CAMERA}"), 4, "spacetime.lensing_width", &["≥ 1e-9", "double precision"]);
+    let metric =
+        "[spacetime]\ntype = \"metric\"\nscale = 1e100\ng_tt = \"-1\"\ng_xx = \"1\"\ng_yy = \"1\"\ng_zz = \"1\"\n";
+    check(&format!("{metric}{CAMERA}"), 3, "spacetime.scale", &["[1e-12, 1e12]", "1e100"]);
+    check(
+        &format!("{CAMERA}[render]\ngeodesic_rtol = 1e-300\n"),
+        6,
+        "render.geodesic_rtol",
+        &["[1e-13, 1)", "rounding"],
+    );
+    // The bounds themselves are accepted.
+    let at_bounds = format!("{CAMERA}[render]\ngeodesic_rtol = 1e-13\n[sky]\ntype = \"stars\"\nbrightness = 1e-3\n");
+    assert!(scene::parse(&at_bounds, "ok.toml", Path::new(".")).is_ok());
 }

@@ -93,11 +93,17 @@ pub(crate) fn scene<'a>(
     }
     let (cameras, chosen) = camera_tables(doc, &root, view)?;
     let mut rigs = Vec::with_capacity(cameras.len());
-    for t in &cameras {
-        rigs.push(b.camera_rig(t)?);
+    for (i, t) in cameras.iter().enumerate() {
+        let rig = b.camera_rig(t)?;
+        // Every view is checked at load, not only the one rendered: a view that cannot be
+        // rendered (inside a horizon, faster than light) is a mistake in the file.
+        rig.at_rest(0.0, &spacetime, axis).map_err(|e| t.loc("position").err(e))?;
+        if i != chosen {
+            rig.camera_at(0.0, &spacetime, axis).map_err(|e| t.err(e))?;
+        }
+        rigs.push(rig);
     }
     let (camera_table, rig) = (&cameras[chosen], rigs.swap_remove(chosen));
-    rig.at_rest(0.0, &spacetime, axis).map_err(|e| camera_table.loc("position").err(e))?;
     let animation_table = root.get("animation").map(|n| n.table(camera::ANIMATION_KEYS)).transpose()?;
     let animation = camera::animation(animation_table.as_ref(), camera_table, rig, &spacetime, axis)?;
     let camera = animation.rig.camera_at(0.0, &spacetime, axis).map_err(|e| camera_table.err(e))?;
