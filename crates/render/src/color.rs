@@ -3,6 +3,14 @@
 /// Linear RGB triple. Radiance, reflectance and throughput all use it.
 pub type Rgb = glam::Vec3;
 
+/// The largest radiance a light or a sky may have (per channel, or as luminance). A sample's
+/// radiance is multiplied by a path's throughput, by the frequency ratio's fourth power (g⁴,
+/// which near a hole or a fast camera reaches 10⁸ and more) and summed over the samples of a
+/// pixel in single precision, whose largest number is 3.4·10³⁸: below 10²⁰ these products stay
+/// finite, above it an image could turn to infinities and NaN. No physical scene needs more in
+/// any units a scene file uses.
+pub const MAX_RADIANCE: f64 = 1e20;
+
 /// ITU-R BT.709 luminance weights of the linear Rec. 709 primaries.
 const LUMINANCE_WEIGHTS: [f64; 3] = [0.2126, 0.7152, 0.0722];
 

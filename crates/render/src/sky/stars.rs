@@ -50,7 +50,7 @@
 //! background = [0.002, 0.002, 0.004]
 //! ```
 
-use crate::color::Rgb;
+use crate::color::{Rgb, MAX_RADIANCE};
 use crate::geometry::{Frame, Vec3};
 use crate::sampling::{uniform_cone, Rng};
 use crate::spectrum::{BlackbodyColours, Colour};
@@ -269,6 +269,21 @@ fn poisson(rng: &mut Rng, lambda: f64) -> u32 {
     k
 }
 
+/// The largest mean flux per star (`brightness`) for stars of angular radius `star_radius_deg`:
+/// the brightest stars' radiance, at most the brightest flux (`FLUX_RANGE` times the faintest)
+/// over the smallest disc, stays within [`MAX_RADIANCE`].
+pub fn max_brightness(star_radius_deg: f64) -> f64 {
+    let smallest_disc = PI * star_radius_deg.to_radians().powi(2);
+    MAX_RADIANCE * smallest_disc * mean_over_min_flux() / FLUX_RANGE
+}
+
+/// The mean of the truncated Pareto law `N(>F) ∝ F^−γ` on `[F_min, R·F_min]` over `F_min`:
+/// `γ/(γ−1) · (1 − R^(1−γ)) / (1 − R^(−γ))`.
+fn mean_over_min_flux() -> f64 {
+    let g = FLUX_SLOPE;
+    g / (g - 1.0) * (1.0 - FLUX_RANGE.powf(1.0 - g)) / (1.0 - FLUX_RANGE.powf(-g))
+}
+
 impl StarField {
     /// Validates the parameters and picks the cube map's resolution.
     pub fn new(params: StarFieldParams) -> Result<Self, String> {
@@ -278,6 +293,12 @@ impl StarField {
         }
         if !(brightness.is_finite() && brightness >= 0.0) {
             return Err(format!("star brightness {brightness} must be a number ≥ 0"));
+        }
+        if brightness > max_brightness(star_radius_deg) {
+            return Err(format!(
+                "star brightness {brightness} is too large for star_radius_deg {star_radius_deg}: at most {:.3e}",
+                max_brightness(star_radius_deg)
+            ));
         }
         if !(star_radius_deg > 0.0 && star_radius_deg <= 2.0) {
             return Err(format!("star_radius_deg {star_radius_deg} must lie in (0, 2]"));
@@ -301,11 +322,7 @@ impl StarField {
                  {per_cell:.0} stars per lookup cell (at most {MAX_STARS_PER_CELL}); use smaller stars"
             ));
         }
-        // Mean of the truncated Pareto law N(>F) ∝ F^−γ on [F_min, R·F_min]:
-        // F_min · γ/(γ−1) · (1 − R^(1−γ)) / (1 − R^(−γ)).
-        let g = FLUX_SLOPE;
-        let mean_over_min = g / (g - 1.0) * (1.0 - FLUX_RANGE.powf(1.0 - g)) / (1.0 - FLUX_RANGE.powf(-g));
-        Ok(Self { params, n: n as u32, min_flux: brightness / mean_over_min, min_radius, margin })
+        Ok(Self { params, n: n as u32, min_flux: brightness / mean_over_min_flux(), min_radius, margin })
     }
 
     pub fn params(&self) -> &StarFieldParams {

@@ -108,6 +108,9 @@ fn emission(n: &Node<'_>) -> Result<Emission> {
             if !(luminance >= 0.0 && luminance.is_finite()) {
                 return Err(t.loc("luminance").err(format!("must be ≥ 0, got {}", num(luminance))));
             }
+            if luminance > render::color::MAX_RADIANCE {
+                return Err(t.loc("luminance").err(super::sky::too_bright(luminance)));
+            }
             let light = BlackbodyLight::new(temperature, luminance).ok_or_else(|| {
                 t.loc("temperature").err(format!(
                     "must be at least 100 K (cooler bodies emit no visible light), got {}",

@@ -2,8 +2,9 @@
 
 use super::Builder;
 use crate::reader::{fmt_rgb, num, Node, Result, Table};
-use render::color::Rgb;
+use render::color::{Rgb, MAX_RADIANCE};
 use render::geometry::Vec3;
+use render::sky::stars::max_brightness;
 use render::sky::{Equirect, Gradient, LatLongGrid, Sky, SkyFrame, StarField, StarFieldParams};
 
 const SKIES: &[(&str, &[&str])] = &[
@@ -14,13 +15,25 @@ const SKIES: &[(&str, &[&str])] = &[
     ("grid", &["background", "line", "spacing_deg", "width_deg", "equator", "prime_meridian", "up", "rotation_deg"]),
 ];
 
-/// A radiance: finite and ≥ 0 per channel.
+/// A radiance: ≥ 0 and at most [`MAX_RADIANCE`] per channel.
 pub(super) fn radiance(n: &Node<'_>) -> Result<Rgb> {
     let c = n.colour()?;
     if c.min_element() < 0.0 {
         return Err(n.err(format!("radiance must be ≥ 0 in every channel, got {}", fmt_rgb(c))));
     }
+    if f64::from(c.max_element()) > MAX_RADIANCE {
+        return Err(n.err(too_bright(f64::from(c.max_element()))));
+    }
     Ok(c)
+}
+
+/// Why a radiance above [`MAX_RADIANCE`] is refused.
+pub(super) fn too_bright(value: f64) -> String {
+    format!(
+        "{} is too bright: at most {MAX_RADIANCE:e}, above which a path's radiance times its throughput and \
+         frequency shift, summed over a pixel's samples, overflows",
+        num(value)
+    )
 }
 
 /// The sky's orientation from `up` and `rotation_deg`.
@@ -57,8 +70,8 @@ impl Builder<'_> {
             }
             "equirect" => {
                 let intensity = non_negative(&t, "intensity", 1.0)?;
-                if intensity > f64::from(f32::MAX) {
-                    return Err(t.loc("intensity").err(format!("{intensity} is too large")));
+                if intensity > MAX_RADIANCE {
+                    return Err(t.loc("intensity").err(too_bright(intensity)));
                 }
                 let frame = frame(&t)?;
                 let image = self.image(&t.require("file")?)?;
@@ -72,9 +85,19 @@ impl Builder<'_> {
                         .loc("star_radius_deg")
                         .err(format!("must be in (0, 2] degrees, got {}", num(star_radius_deg))));
                 }
+                let brightness = non_negative(&t, "brightness", d.brightness)?;
+                if brightness > max_brightness(star_radius_deg) {
+                    return Err(t.loc("brightness").err(format!(
+                        "{} is too bright for stars of star_radius_deg = {}: at most {:.3e}, above which \
+                         the brightest stars' radiance exceeds {MAX_RADIANCE:e} and sums of samples overflow",
+                        num(brightness),
+                        num(star_radius_deg),
+                        max_brightness(star_radius_deg)
+                    )));
+                }
                 let params = StarFieldParams {
                     density: non_negative(&t, "density", d.density)?,
-                    brightness: non_negative(&t, "brightness", d.brightness)?,
+                    brightness,
                     seed: t.or("seed", d.seed, |n| n.u64())?,
                     star_radius_deg,
                     background: t.or("background", d.background, radiance)?,

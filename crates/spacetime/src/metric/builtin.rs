@@ -42,6 +42,9 @@ fn finite_non_negative(name: &str, v: f64) -> Result<f64, ParameterError> {
     }
 }
 
+/// The narrowest lensing width of the *Interstellar* wormhole, as a fraction of its throat.
+pub const MIN_RELATIVE_LENSING_WIDTH: f64 = 1e-9;
+
 impl Spacetime {
     pub fn schwarzschild(mass: f64) -> Result<Self, ParameterError> {
         Ok(Spacetime::Schwarzschild(Schwarzschild::new(finite_non_negative("mass", mass)?)))
@@ -92,8 +95,15 @@ impl Spacetime {
             return Err(ParameterError(format!("throat radius must be a finite number > 0, got {throat}")));
         }
         let length = finite_non_negative("length", length)?;
-        if !(lensing_width.is_finite() && lensing_width > 0.0) {
-            return Err(ParameterError(format!("lensing width must be a finite number > 0, got {lensing_width}")));
+        // The shape function's `ln(1 + x²)`, with `x ∝ ℓ/𝒲`, overflows for widths near 10⁻¹⁵⁰ of
+        // the distances a ray covers; long before, a narrower lensing region is a sharp edge that
+        // rays cannot tell from one of 10⁻⁹ of the throat.
+        let narrowest = MIN_RELATIVE_LENSING_WIDTH * throat;
+        if !(lensing_width.is_finite() && lensing_width >= narrowest) {
+            return Err(ParameterError(format!(
+                "lensing width must be a finite number ≥ {narrowest:e} ({MIN_RELATIVE_LENSING_WIDTH:e} of the throat \
+                 radius), got {lensing_width}: narrower is an edge no ray resolves in double precision"
+            )));
         }
         Ok(Spacetime::Wormhole(MorrisThorne::new(Dneg::new(throat, length, lensing_width))))
     }

@@ -48,6 +48,12 @@ use std::sync::Arc;
 /// documentation).
 pub const LAPSE_FLOOR: f64 = 1e-3;
 
+/// The range of a written metric's curvature length `scale`, in scene units (measured: the
+/// Schwarzschild metric of mass 1 written by hand renders alike for scales from 10⁻⁹ to 10¹²,
+/// loses most rays at 10¹⁵).
+pub const MIN_SCALE: f64 = 1e-12;
+pub const MAX_SCALE: f64 = 1e12;
+
 /// Half the digits of `f64`: how far from the polar axis spherical components are evaluated
 /// (module documentation).
 const AXIS_OFFSET: f64 = 1.4901161193847656e-8;
@@ -96,8 +102,12 @@ impl WrittenMetric {
         horizon: Option<Expression>,
         scale: f64,
     ) -> Result<Self, ParameterError> {
-        if !(scale.is_finite() && scale > 0.0) {
-            return Err(ParameterError(format!("scale must be a finite number > 0, got {scale}")));
+        if !(scale >= MIN_SCALE && scale <= MAX_SCALE) {
+            return Err(ParameterError(format!(
+                "scale must lie in [{MIN_SCALE:e}, {MAX_SCALE:e}], got {scale:?}: the curvature length sets the \
+                 first steps and the escape radius (hundreds of it), which beyond these bounds fall outside what \
+                 double-precision steps resolve, and rays are lost"
+            )));
         }
         let mut written = [[false; 4]; 4];
         let mut upper = Vec::with_capacity(components.len());
