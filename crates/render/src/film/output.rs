@@ -256,16 +256,36 @@ pub(crate) fn write_atomically(
     path: &Path,
     write: impl FnOnce(&Path) -> Result<(), ImageWriteError>,
 ) -> Result<(), ImageWriteError> {
+    let io_error = |source| ImageWriteError::Io { path: path.to_owned(), source };
+    replace_atomically(path, write, io_error).map_err(|e| e.with_path(path))
+}
+
+/// Writes `contents` to `path` as images are written: into a temporary sibling, flushed to the
+/// disk, then renamed over `path`; for the text files written beside images (statistics), so
+/// that they too are whole or absent, never half-written.
+pub fn write_file_atomically(path: &Path, contents: &[u8]) -> std::io::Result<()> {
+    let write = |temporary: &Path| {
+        let mut file = File::create(temporary)?;
+        file.write_all(contents)?;
+        file.sync_all()
+    };
+    replace_atomically(path, write, |e| e)
+}
+
+/// [`write_atomically`] for any error type: `rename_error` makes one of the rename's I/O error.
+fn replace_atomically<E>(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), E>,
+    rename_error: impl FnOnce(std::io::Error) -> E,
+) -> Result<(), E> {
     remove_stale_temporaries(path);
     let temporary = temporary_sibling(path);
-    let result = write(&temporary).and_then(|()| {
-        std::fs::rename(&temporary, path).map_err(|source| ImageWriteError::Io { path: path.to_owned(), source })
-    });
+    let result = write(&temporary).and_then(|()| std::fs::rename(&temporary, path).map_err(rename_error));
     if result.is_err() {
         // Best effort: the temporary may not exist, and the original error is what matters.
         let _ = std::fs::remove_file(&temporary);
     }
-    result.map_err(|e| e.with_path(path))
+    result
 }
 
 impl ImageWriteError {
@@ -595,6 +615,24 @@ mod tests {
         assert!(matches!(err, ImageWriteError::Io { .. }), "{err:?}");
         assert!(err.to_string().contains(&path.display().to_string()), "{err}");
         assert!(std::error::Error::source(&err).is_some());
+        assert!(!temporary_left);
+    }
+
+    #[test]
+    fn text_files_are_replaced_whole_and_leave_no_temporary() {
+        let path = temp_path("stats", "json");
+        let _cleanup = Cleanup(path.clone());
+        write_file_atomically(&path, b"first").expect("written");
+        write_file_atomically(&path, b"second, longer").expect("replaced");
+        assert_eq!(std::fs::read(&path).expect("readable"), b"second, longer");
+        assert!(!temporary_sibling(&path).exists());
+        // Onto a directory: the rename fails, the directory is kept and the temporary removed.
+        let directory = temp_path("stats-directory", "json");
+        std::fs::create_dir(&directory).expect("temp directory");
+        let failed = write_file_atomically(&directory, b"x");
+        let temporary_left = temporary_sibling(&directory).exists();
+        std::fs::remove_dir(&directory).expect("still a directory");
+        assert!(failed.is_err());
         assert!(!temporary_left);
     }
 
