@@ -1,6 +1,7 @@
 //! `nullpath`: render ordinary scenes in curved spacetime, and explore its geodesics.
 
 mod commands;
+mod panics;
 
 use clap::{Parser, Subcommand};
 use commands::Failure;
@@ -33,23 +34,38 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // The preview serves pages from threads whose panics never reach `main`: they keep Rust's
+    // own report, which a hook that only records would hide.
     if !matches!(cli.command, Command::Preview(_)) {
         quit_on_closed_pipe();
+        panics::install();
     }
-    let result = match cli.command {
+    ExitCode::from(finish(panics::catching(|| run(cli))))
+}
+
+fn run(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
         Command::Render(args) => commands::render::run(&args),
-        Command::Animate(args) => commands::animate::run(&args).map_err(Failure::from),
+        Command::Animate(args) => commands::animate::run(&args),
         Command::Merge(args) => commands::merge::run(&args).map_err(Failure::from),
         Command::Info(args) => commands::info::run(&args).map_err(Failure::from),
         Command::Geodesic(args) => commands::geodesic::run(&args).map_err(Failure::from),
         Command::Preview(args) => commands::preview::run(&args).map_err(Failure::from),
         Command::Bench(args) => commands::bench::run(&args).map_err(Failure::from),
-    };
+    }
+}
+
+/// Tells the user how the command ended, unless it succeeded; the exit status.
+fn finish(result: Result<(), Failure>) -> u8 {
     match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(Failure { message, code }) => {
+        Ok(()) => 0,
+        Err(Failure { message, code, is_error: true }) => {
             eprintln!("nullpath: error: {message}");
-            ExitCode::from(code)
+            code
+        }
+        Err(Failure { message, code, is_error: false }) => {
+            eprintln!("nullpath: {message}");
+            code
         }
     }
 }

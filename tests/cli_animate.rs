@@ -73,8 +73,10 @@ fn an_interrupted_animation_resumes_with_only_the_missing_frames() {
     }
     let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
     let first = child.wait_with_output().unwrap();
-    assert!(!first.status.success(), "an interrupted animation reports failure");
-    assert!(stderr(&first).contains("interrupted in frame"), "{}", stderr(&first));
+    assert_eq!(first.status.code(), Some(130), "an interrupted animation says so: {}", stderr(&first));
+    let message = stderr(&first);
+    assert!(message.contains("nullpath: interrupted by SIGINT (Ctrl-C) in frame"), "{message}");
+    assert!(message.contains("Run the same command again"), "{message}");
     let done: Vec<u32> = (0..30).filter(|n| dir.join(format!("frame_{n:05}.png")).exists()).collect();
     let k = done.len() as u32;
     assert!((2..30).contains(&k), "{k} frames finished before the interrupt");

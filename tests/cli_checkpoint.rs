@@ -218,6 +218,8 @@ fn merged_parts_are_the_single_render_bit_for_bit() {
         let out = merge.output().unwrap();
         assert!(out.status.success(), "{n} parts: {}", stderr(&out));
         assert_eq!(pixels(&merged), pixels(&single), "{n} parts");
+        // Part N/N comes first, and of 7 it holds no tiles: the image still records 3 samples.
+        assert_eq!(info(&merged, "spp"), "3", "{n} parts");
         if n == 7 {
             // A missing part, a part twice and parts of another render are refused.
             let out = nullpath().args(["merge", "-o", arg(&merged)]).args(&parts[..6]).output().unwrap();
@@ -265,7 +267,8 @@ fn a_second_interrupt_quits_at_once() {
         .unwrap();
     std::thread::sleep(Duration::from_millis(1500));
     signal(&child, "INT");
-    std::thread::sleep(Duration::from_millis(100));
+    // Well past the 0.1 s within which a second SIGINT is a copy of the first press.
+    std::thread::sleep(Duration::from_millis(400));
     let asked = Instant::now();
     signal(&child, "INT");
     let result = child.wait_with_output().unwrap();
@@ -274,6 +277,113 @@ fn a_second_interrupt_quits_at_once() {
     assert!(!stderr(&result).contains("--resume"), "the first interrupt's answer finished: {}", stderr(&result));
     assert!(answered < Duration::from_secs(1), "answered after {answered:?}");
     assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Starts a render of a million samples per pixel in `dir` that writes its checkpoint every
+/// 50 ms, and waits for the first: the signal handlers are in place by then.
+fn start_and_wait_for_checkpoint(dir: &Path) -> (Child, PathBuf) {
+    let (out, checkpoint) = (dir.join("image.exr"), dir.join("state.exr"));
+    let _ = std::fs::remove_file(&checkpoint);
+    let child = start(
+        CORNELL,
+        &["-o", arg(&out), "--spp", "1000000", "--checkpoint", arg(&checkpoint), "--checkpoint-every", "0.05"],
+    );
+    let started = Instant::now();
+    while !checkpoint.exists() {
+        assert!(started.elapsed() < Duration::from_secs(60), "no checkpoint after a minute");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    (child, checkpoint)
+}
+
+#[test]
+fn a_repeated_sigterm_is_the_same_request_and_the_checkpoint_is_written() {
+    // `timeout` and supervisors that signal the process group after the process send SIGTERM
+    // twice within microseconds; others resend it later. Neither may cost the work.
+    let dir = temp_dir("repeated-sigterm");
+    for run in 0..10 {
+        let (child, checkpoint) = start_and_wait_for_checkpoint(&dir);
+        let pid = child.id().to_string();
+        if run % 2 == 0 {
+            // One `kill`, two signals: microseconds apart.
+            assert!(Command::new("kill").args(["-TERM", &pid, &pid]).status().unwrap().success());
+        } else {
+            signal(&child, "TERM");
+            std::thread::sleep(Duration::from_millis(1));
+            signal(&child, if run == 9 { "HUP" } else { "TERM" });
+        }
+        let result = child.wait_with_output().unwrap();
+        let message = stderr(&result);
+        assert_eq!(result.status.code(), Some(143), "run {run}: {message}");
+        assert!(message.contains("interrupted by SIGTERM"), "run {run}: {message}");
+        assert!(message.contains(&format!("the work is in the checkpoint {}", checkpoint.display())), "run {run}");
+        assert!(message.contains("--resume"), "run {run}: {message}");
+        assert!(info(&checkpoint, "spp").parse::<u32>().unwrap() > 0, "run {run}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn copies_of_one_ctrl_c_are_one_request() {
+    // A wrapper that forwards the SIGINT the terminal sent to the whole group as well.
+    let dir = temp_dir("sigint-copies");
+    for run in 0..3 {
+        let (child, checkpoint) = start_and_wait_for_checkpoint(&dir);
+        let pid = child.id().to_string();
+        assert!(Command::new("kill").args(["-INT", &pid, &pid]).status().unwrap().success());
+        let result = child.wait_with_output().unwrap();
+        let message = stderr(&result);
+        assert_eq!(result.status.code(), Some(130), "run {run}: {message}");
+        assert!(message.contains("interrupted by SIGINT (Ctrl-C)") && message.contains("--resume"), "{message}");
+        assert!(checkpoint.exists());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_time_limit_is_news_not_an_error() {
+    let dir = temp_dir("time-limit-message");
+    let (out, checkpoint) = (dir.join("image.exr"), dir.join("image.checkpoint.exr"));
+    let stopped = render(&["-o", arg(&out), "--spp", "1000000", "--time-limit", "1s"]);
+    let message = stderr(&stopped);
+    assert_eq!(stopped.status.code(), Some(75), "{message}");
+    assert!(message.starts_with("nullpath: stopped at the time limit (1s) at "), "{message}");
+    assert!(!message.contains("error"), "{message}");
+    let expected = format!(
+        "samples per pixel; the work is in the checkpoint {c} ({o} was not touched). \
+         Continue with the same command and --resume {c}\n",
+        c = checkpoint.display(),
+        o = out.display()
+    );
+    assert!(message.ends_with(&expected), "{message}");
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn parts_of_different_samples_are_not_merged() {
+    let dir = temp_dir("merge-spp");
+    let (first, second, merged) = (dir.join("p1.exr"), dir.join("p2.exr"), dir.join("merged.exr"));
+    assert!(render(&["-o", arg(&first), "--spp", "2", "--part", "1/2"]).status.success());
+    assert!(render(&["-o", arg(&second), "--spp", "4", "--part", "2/2"]).status.success());
+    let out = nullpath().args(["merge", "-o", arg(&merged), arg(&first), arg(&second)]).output().unwrap();
+    let message = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{message}");
+    let figures =
+        format!("{} (part 1/2) has 2 samples per pixel but {} (part 2/2) has 4", first.display(), second.display());
+    assert!(message.contains(&figures), "{message}");
+    assert!(!merged.exists());
+    // The remedy the message gives: continue the part with fewer samples into itself.
+    let remedy = format!("--part 1/2 --spp 4 --resume {} -o {}", first.display(), first.display());
+    assert!(message.contains(&remedy), "{message}");
+    assert!(render(&["-o", arg(&first), "--spp", "4", "--part", "1/2", "--resume", arg(&first)]).status.success());
+    let out = nullpath().args(["merge", "--quiet", "-o", arg(&merged), arg(&first), arg(&second)]).output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(info(&merged, "spp"), "4");
+    let single = dir.join("single.exr");
+    assert!(render(&["-o", arg(&single), "--spp", "4"]).status.success());
+    assert_eq!(pixels(&merged), pixels(&single));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

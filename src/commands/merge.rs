@@ -2,6 +2,7 @@
 //! Each part holds the exact sums of its own tiles, so the merged image is bit for bit the one a
 //! single render makes, whatever machines and thread counts rendered the parts.
 
+use super::files::Files;
 use super::provenance;
 use clap::Parser;
 use render::film::{read_checkpoint, write_image, Checkpoint, Film};
@@ -46,7 +47,42 @@ fn read_part(path: &Path) -> Result<PartFile, String> {
     Ok(PartFile { path: path.to_owned(), part, checkpoint })
 }
 
+/// Refuses parts `a` and `b` of one render made to different numbers of samples per pixel: their
+/// tiles would be of different noise, and the image's metadata could record only one of them.
+/// The settings' hash leaves the sample count out, since a checkpoint may be continued to more.
+/// The goal is compared, not the samples reached: a part may hold no tiles (7 parts of a small
+/// image), and so no samples.
+fn check_same_samples(a: &PartFile, b: &PartFile) -> Result<(), String> {
+    let goal = |p: &PartFile| p.checkpoint.metadata.get("spp.goal").cloned().unwrap_or_else(|| "?".into());
+    if goal(a) == goal(b) {
+        return Ok(());
+    }
+    let (fewer, more) = match (goal(a).parse::<u32>(), goal(b).parse::<u32>()) {
+        (Ok(x), Ok(y)) if y < x => (b, a),
+        _ => (a, b),
+    };
+    Err(format!(
+        "{} (part {}) has {} samples per pixel but {} (part {}) has {}: the parts of one image must have \
+         the same; continue the one with fewer: nullpath render ... --part {} --spp {} --resume {} -o {}",
+        a.path.display(),
+        a.part,
+        goal(a),
+        b.path.display(),
+        b.part,
+        goal(b),
+        fewer.part,
+        goal(more),
+        fewer.path.display(),
+        fewer.path.display()
+    ))
+}
+
 pub fn run(args: &Args) -> Result<(), String> {
+    let mut files = Files::default();
+    for part in &args.parts {
+        files.reads("the part file", part);
+    }
+    files.writes("the merged image (-o)", &args.output)?;
     render::film::check_output_path(&args.output).map_err(|e| e.to_string())?;
     let parts: Vec<PartFile> = args.parts.iter().map(|p| read_part(p)).collect::<Result<_, _>>()?;
     let first = &parts[0];
@@ -69,6 +105,7 @@ pub fn run(args: &Args) -> Result<(), String> {
                 p.path.display()
             ));
         }
+        check_same_samples(first, p)?;
         let mut same_part = parts.iter().filter(|q| q.part == p.part);
         if let (Some(a), Some(b)) = (same_part.next(), same_part.next()) {
             return Err(format!("{} and {} are both part {}", a.path.display(), b.path.display(), p.part));
@@ -87,6 +124,12 @@ pub fn run(args: &Args) -> Result<(), String> {
     }
     let mut metadata = first.checkpoint.metadata.clone();
     metadata.insert("part".into(), Part::WHOLE.to_string());
+    // Every part is finished to the one goal, without a noise target (parts take none): every
+    // pixel has the goal's samples, whatever the first part (which may hold no tiles) reached.
+    if let Some(goal) = metadata.get("spp.goal").cloned() {
+        metadata.insert("spp".into(), goal.clone());
+        metadata.insert("spp.min".into(), goal);
+    }
     metadata
         .insert("merged_from".into(), args.parts.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(" "));
     let tonemap = provenance::tonemap(&metadata).map_err(|e| format!("{}: {e}", first.path.display()))?;

@@ -1,6 +1,7 @@
 //! `nullpath render`: render a scene file (or the default scene) to PNG, EXR or HDR,
 //! progressively, with checkpoints, resumption, noise targets and parts of an image.
 
+use super::files::{same_file, Files};
 use super::interrupt::{Interrupts, StopReason};
 use super::provenance::{self, Source};
 use super::Failure;
@@ -8,7 +9,8 @@ use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use progressive::{PathRender, Progressive};
 use render::film::{
-    check_output_path, check_writable, read_checkpoint, write_image_with_data, DataLayer, Film, ImageFormat, Metadata,
+    check_output_path, check_writable, read_checkpoint, write_file_atomically, write_image_with_data, DataLayer, Film,
+    ImageFormat, Metadata,
 };
 use render::integrator::photon::{PhotonRenderer, SppmResume, SppmState};
 use render::integrator::PathStats;
@@ -41,7 +43,8 @@ const CHECKPOINT_BYTES_PER_PIXEL: u64 = Film::BYTES_PER_PIXEL + 4 * (3 + 2 * 6 +
 #[derive(Parser, Debug)]
 #[command(after_help = "Flags override the scene file's values. Scenes: see docs/scene-format.md.\n\
     An interrupted render (Ctrl-C, SIGTERM, SIGHUP, --time-limit) keeps its work in a checkpoint \
-    and leaves the output untouched; a second Ctrl-C quits at once.")]
+    and leaves the output untouched; a second Ctrl-C quits at once, without the checkpoint \
+    (a repeated SIGTERM or SIGHUP does not). No file written may be one read or another written.")]
 pub struct Args {
     /// Scene file (TOML); the default scene (scenes/room-black-hole.toml, built in) when omitted.
     scene: Option<PathBuf>,
@@ -61,7 +64,8 @@ pub struct Args {
     stats: Option<PathBuf>,
     /// Keep the render's state in this checkpoint (.exr): written every --checkpoint-every, when
     /// interrupted, and at the end (to continue later to more samples). Without it, an
-    /// interrupted render writes OUTPUT's name with .checkpoint.exr.
+    /// interrupted render writes OUTPUT's name with .checkpoint.exr. It may be the --resume
+    /// checkpoint, which is then brought up to date in place.
     #[arg(long, value_name = "PATH")]
     checkpoint: Option<PathBuf>,
     /// How often to write the checkpoint, e.g. 10s, 5m, 1h (default 5m with --checkpoint).
@@ -384,25 +388,62 @@ fn check_path(path: &Path, what: &str, exr_only: bool) -> Result<(), String> {
     check_writable(path).map_err(|e| format!("{what}: {e}"))
 }
 
+/// Checks that the statistics can be written to `path`, which they replace whole (see
+/// [`write_json`]): a file can be made in its directory and `path` is not a directory.
 fn check_stats_path(path: &Path) -> Result<(), String> {
-    let error = |e: std::io::Error| format!("--stats '{}': cannot write: {e}", path.display());
-    // Appending creates the file if needed without truncating an existing one.
-    let existed = path.exists();
-    std::fs::OpenOptions::new().append(true).create(true).open(path).map_err(error)?;
-    if !existed {
-        std::fs::remove_file(path).map_err(error)?;
+    let refuse = |why: String| format!("--stats '{}': cannot write: {why}", path.display());
+    if path.is_dir() {
+        return Err(refuse("it is a directory".into()));
     }
-    Ok(())
+    check_writable(path)
+        .map_err(|e| refuse(std::error::Error::source(&e).map_or_else(|| e.to_string(), ToString::to_string)))
 }
 
 fn write_stats(path: &Path, stats: &RenderStats, scene: &Scene) -> Result<(), String> {
     write_json(path, &stats_json(stats, scene))
 }
 
-/// Writes the statistics `value` to `path` as pretty JSON.
+/// Writes the statistics `value` to `path` as pretty JSON, atomically: a reader (or a process
+/// killed mid-write) sees the previous file or the new one, never half of one.
 fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), String> {
-    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
-    std::fs::write(path, text + "\n").map_err(|e| format!("{}: cannot write statistics: {e}", path.display()))
+    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())? + "\n";
+    write_file_atomically(path, text.as_bytes())
+        .map_err(|e| format!("{}: cannot write statistics: {e}", path.display()))
+}
+
+/// Refuses, before anything is rendered, a command whose files collide: a file it writes (the
+/// image, the checkpoint, the statistics) that is a file it reads (the scene, the `--resume`
+/// checkpoint) or another it writes. The one file written in place of what is read is the
+/// checkpoint continued (`--resume` with its own `--checkpoint`, or its default name), and a
+/// part file continued into itself: each is read whole before it is replaced, with its samples
+/// and more.
+fn check_files(args: &Args) -> Result<(), String> {
+    let mut files = Files::default();
+    if let Some(scene) = &args.scene {
+        files.reads("the scene file", scene);
+    }
+    let checkpoint = args.checkpoint_path();
+    if let Some(resume) = &args.resume {
+        let updated = same_file(resume, &checkpoint) || (args.part.is_some() && same_file(resume, &args.output));
+        if !updated {
+            files.reads("--resume", resume);
+        }
+    }
+    let output = match (args.part, args.data_only) {
+        (Some(_), _) => "the part file (-o)",
+        (None, true) => "the data image (-o)",
+        (None, false) => "the image (-o)",
+    };
+    files.writes(output, &args.output)?;
+    if !args.data_only {
+        let role =
+            if args.checkpoint.is_some() { "--checkpoint" } else { "the checkpoint (-o's name, .checkpoint.exr)" };
+        files.writes(role, &checkpoint)?;
+    }
+    match &args.stats {
+        Some(stats) => files.writes("--stats", stats),
+        None => Ok(()),
+    }
 }
 
 impl Args {
@@ -427,6 +468,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         return Err(format!("--time must be a finite number of seconds, got {}", args.time).into());
     }
     scene.set_time(args.time)?;
+    check_files(args)?;
     let source = args.options.source(args.scene.as_deref(), args.time);
     if args.data_only {
         return Ok(data_only::run(args, &scene, &source)?);
@@ -542,7 +584,7 @@ impl Command<'_> {
         }
         if args.checkpoint.is_some() {
             render.checkpoint(&checkpoint, &|_| metadata(&stats))?;
-        } else if args.resume.as_deref() == Some(checkpoint.as_path()) {
+        } else if args.resume.as_deref().is_some_and(|resume| same_file(resume, &checkpoint)) {
             // The work is in the image now; the checkpoint an interruption left is done with.
             let _ = std::fs::remove_file(&checkpoint);
         }
@@ -668,17 +710,22 @@ fn interrupted(
     } else {
         format!("{}–{}", stats.spp_min, stats.spp_max)
     };
-    Err(Failure {
-        message: format!(
-            "{reason} at {spp} {}; the work is in {} ({} was not touched). \
+    let why = match (reason, args.time_limit) {
+        (StopReason::TimeLimit, Some(limit)) => format!("{reason} ({})", humantime::format_duration(limit)),
+        _ => reason.to_string(),
+    };
+    // Asked for, and nothing lost: news, not an error; the exit status tells scripts it stopped.
+    Err(Failure::stopped(
+        format!(
+            "{why} at {spp} {}; the work is in the checkpoint {} ({} was not touched). \
              Continue with the same command and --resume {}",
             if scene.settings.integrator == IntegratorKind::Photon { "iterations" } else { "samples per pixel" },
             checkpoint.display(),
             args.output.display(),
             checkpoint.display()
         ),
-        code: reason.exit_code(),
-    })
+        reason.exit_code(),
+    ))
 }
 
 #[cfg(test)]
