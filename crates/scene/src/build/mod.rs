@@ -61,6 +61,11 @@ pub(crate) fn scene<'a>(
         None => (Spacetime::Minkowski(Minkowski), Vec3::Y),
     };
     let (spacetime, axis) = spacetime;
+    let (cameras, chosen) = camera_tables(doc, &root, view)?;
+    // Each camera's own spacetime: a view may set the parameters anew (`[views.NAME.spacetime]`,
+    // as the preview's Save view writes its sliders), and the scene is in the chosen one's.
+    let spacetimes = cameras.iter().map(|t| view_spacetime(t, &spacetime)).collect::<Result<Vec<_>>>()?;
+    let spacetime = spacetimes[chosen].clone();
     let mut b = Builder {
         base_dir,
         policy,
@@ -91,15 +96,14 @@ pub(crate) fn scene<'a>(
     if let Some(n) = root.get("accretion_disk") {
         upper.push(b.accretion_disk(&n, &spacetime, axis)?);
     }
-    let (cameras, chosen) = camera_tables(doc, &root, view)?;
     let mut rigs = Vec::with_capacity(cameras.len());
-    for (i, t) in cameras.iter().enumerate() {
+    for (i, (t, seen_in)) in cameras.iter().zip(&spacetimes).enumerate() {
         let rig = b.camera_rig(t)?;
         // Every view is checked at load, not only the one rendered: a view that cannot be
         // rendered (inside a horizon, faster than light) is a mistake in the file.
-        rig.at_rest(0.0, &spacetime, axis).map_err(|e| t.loc("position").err(e))?;
+        rig.at_rest(0.0, seen_in, axis).map_err(|e| t.loc("position").err(e))?;
         if i != chosen {
-            rig.camera_at(0.0, &spacetime, axis).map_err(|e| t.err(e))?;
+            rig.camera_at(0.0, seen_in, axis).map_err(|e| t.err(e))?;
         }
         rigs.push(rig);
     }
@@ -144,7 +148,7 @@ fn camera_tables<'a>(doc: &Doc<'a>, root: &Table<'a>, view: Option<&str>) -> Res
     let mut tables = vec![main];
     for (name, v) in views.iter().flat_map(|v| v.entries()) {
         names.push(Some(name));
-        tables.push(v.table(camera::CAMERA_KEYS)?);
+        tables.push(v.table(&[camera::CAMERA_KEYS, &["spacetime"]].concat())?);
     }
     match names.iter().position(|n| *n == view) {
         Some(i) => Ok((tables, i)),
@@ -156,6 +160,20 @@ fn camera_tables<'a>(doc: &Doc<'a>, root: &Table<'a>, view: Option<&str>) -> Res
             Err(doc.error(0, "views", format!("no view named \"{name}\" ([views.{name}]); {known}")))
         }
     }
+}
+
+/// The spacetime the camera table `t` sees: `file`'s, with the parameters a view's `spacetime`
+/// table sets anew, each within the range [`Spacetime::parameters`] offers (the preview's
+/// sliders': up to three times the file's length scale) and the whole checked by the physics
+/// crate as `[spacetime]` is.
+fn view_spacetime(t: &Table<'_>, file: &Spacetime) -> Result<Spacetime> {
+    // `[camera]` takes no `spacetime` table: `[spacetime]` is its.
+    let Some(n) = t.allows("spacetime").then(|| t.get("spacetime")).flatten() else {
+        return Ok(file.clone());
+    };
+    let names: Vec<&'static str> = file.parameters().iter().map(|p| p.name).collect();
+    let values = n.table(&names)?.entries().into_iter().map(|(k, v)| Ok((k, v.f64()?))).collect::<Result<Vec<_>>>()?;
+    file.with_parameters(&values).map_err(|e| n.err(e.to_string()))
 }
 
 /// Reads one spacetime type's parameters from its table.
