@@ -121,7 +121,10 @@ fn videos_are_made_by_ffmpeg_or_explained_without_it() {
     std::fs::create_dir_all(&bin).unwrap();
     let fake = bin.join("ffmpeg");
     let log = dir.join("ffmpeg-args.txt");
-    std::fs::write(&fake, format!("#!/bin/sh\necho \"$@\" > '{}'\n", log.display())).unwrap();
+    // It writes its last argument, the video, as ffmpeg does.
+    let script =
+        format!("#!/bin/sh\necho \"$@\" > '{}'\nfor last; do :; done\necho video > \"$last\"\n", log.display());
+    std::fs::write(&fake, script).unwrap();
     std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
     let out = animate(&format!("{}:/bin:/usr/bin", bin.display()));
     assert!(out.status.success(), "{}", stderr(&out));
@@ -129,6 +132,11 @@ fn videos_are_made_by_ffmpeg_or_explained_without_it() {
     for expected in ["-framerate 12", "-start_number 3", "frame_%05d.png", "-frames:v 2", "libx264", "out.mp4"] {
         assert!(called.contains(expected), "{called:?} lacks {expected:?}");
     }
+    // Encoded beside the video under a temporary name, then renamed into place.
+    assert!(!called.trim_end().ends_with(video.to_str().unwrap()), "{called:?}: ffmpeg wrote the video itself");
+    assert_eq!(std::fs::read_to_string(&video).unwrap(), "video\n");
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert!(!left.iter().any(|n| n.to_string_lossy().contains("partial")), "{left:?}");
 }
 
 #[test]
