@@ -730,13 +730,21 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
                 t.accept(&attempt)?;
             }
             let escaping = du1 < 0.0 && u1 <= escape_u;
-            let span = if escaping { t.crossing(phi0, &attempt, escape_u) } else { 1.0 };
+            // A step that ends behind the horizon is shown only up to it: the ray is captured
+            // there, and beyond it the chart has no static observer to measure a hit's
+            // direction (the radial stretch 1/√(1 − 2Mu) is not real).
+            let capture = metric.capture_u().filter(|&uc| u1 >= uc);
+            let span = match (escaping, capture) {
+                (true, _) => t.crossing(phi0, &attempt, escape_u),
+                (false, Some(uc)) => t.crossing(phi0, &attempt, uc),
+                (false, None) => 1.0,
+            };
             let frame = t.segment.chart_direction(phi0);
             let step = PlaneStep::Curved { segment: &t.segment, phi0, attempt: &attempt, span, frame };
             if visit(&step) == Visit::Stop {
                 return Ok((Fate::Stopped, f64::NAN));
             }
-            if metric.capture_u().is_some_and(|uc| u1 >= uc) {
+            if capture.is_some() {
                 return Ok((Fate::Captured, f64::NAN));
             }
             if escaping {
@@ -857,6 +865,42 @@ mod tests {
         }
         // Measured: 247 of 247 steps bounded (a step that turned too little would not be).
         assert!(steps > 200 && bounded * 10 > 9 * steps, "{bounded} of {steps} steps bounded");
+    }
+
+    /// A ray aimed almost at the centre falls through the horizon within one step: the step is
+    /// shown only up to the horizon, where every point has a real direction (beyond it, the
+    /// radial stretch is not real and a hit there had a NaN direction: the glass ball's failed
+    /// rays), and the ray ends captured.
+    #[test]
+    fn a_step_into_the_horizon_is_shown_up_to_it() {
+        let hole = Schwarzschild::new(0.8);
+        let settings = TraceSettings {
+            integrator: Integrator::Adaptive { rtol: 1e-8 },
+            escape_radius: 200.0,
+            max_step_fraction: 0.5,
+            max_steps: 10_000,
+            check_every_step: false,
+        };
+        let (horizon, mut curved) = (1.6, 0);
+        for k in 1..=20 {
+            let tangent = 1e-3 * f64::from(k);
+            let direction = normalize3(&[tangent, 0.0, -1.0]);
+            let start = PlaneStart::from_observer(&hole, Region::Upper, [0.0, 0.0, 16.0], direction).unwrap();
+            let trace = trace_plane(&hole, start, &settings, |step| {
+                if let PlaneStep::Curved { .. } = step {
+                    curved += 1;
+                    // Short of the step's end, which may lie on the horizon itself.
+                    for j in 0..16 {
+                        let point = step.point(&hole, f64::from(j) / 16.0);
+                        assert!(point.direction.iter().all(|d| d.is_finite()), "ray {k}: {point:?}");
+                        assert!(norm3(&point.position) >= horizon * (1.0 - 1e-9), "ray {k}: {point:?}");
+                    }
+                }
+                Visit::Continue
+            });
+            assert_eq!(trace.fate, Fate::Captured, "ray {k}");
+        }
+        assert!(curved >= 20, "{curved} curved steps seen");
     }
 
     #[test]
