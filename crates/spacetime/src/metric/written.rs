@@ -102,7 +102,7 @@ impl WrittenMetric {
         horizon: Option<Expression>,
         scale: f64,
     ) -> Result<Self, ParameterError> {
-        if !(scale >= MIN_SCALE && scale <= MAX_SCALE) {
+        if !(MIN_SCALE..=MAX_SCALE).contains(&scale) {
             return Err(ParameterError(format!(
                 "scale must lie in [{MIN_SCALE:e}, {MAX_SCALE:e}], got {scale:?}: the curvature length sets the \
                  first steps and the escape radius (hundreds of it), which beyond these bounds fall outside what \
