@@ -823,18 +823,22 @@ mod tests {
     use crate::geodesic::tangent_triangle::tangent_triangle;
     use crate::metric::Schwarzschild;
 
+    fn adaptive(rtol: f64, escape_radius: f64) -> TraceSettings {
+        TraceSettings {
+            integrator: Integrator::Adaptive { rtol },
+            escape_radius,
+            max_step_fraction: 0.5,
+            max_steps: 10_000,
+            check_every_step: false,
+        }
+    }
+
     /// Every curved step of a Schwarzschild ray lies in the triangle of its chord and the world
     /// tangents [`PlaneStep::knot`] gives at its ends, weak and strong bending alike.
     #[test]
     fn steps_lie_in_the_triangles_of_their_knots() {
         let hole = Schwarzschild::new(0.3);
-        let settings = TraceSettings {
-            integrator: Integrator::Adaptive { rtol: 1e-7 },
-            escape_radius: 40.0,
-            max_step_fraction: 0.5,
-            max_steps: 10_000,
-            check_every_step: true,
-        };
+        let settings = TraceSettings { check_every_step: true, ..adaptive(1e-7, 40.0) };
         let (mut bounded, mut steps) = (0, 0);
         for k in 0..60 {
             let angle = 0.05 + 3.0 * f64::from(k) / 60.0;
@@ -874,13 +878,7 @@ mod tests {
     #[test]
     fn a_step_into_the_horizon_is_shown_up_to_it() {
         let hole = Schwarzschild::new(0.8);
-        let settings = TraceSettings {
-            integrator: Integrator::Adaptive { rtol: 1e-8 },
-            escape_radius: 200.0,
-            max_step_fraction: 0.5,
-            max_steps: 10_000,
-            check_every_step: false,
-        };
+        let settings = adaptive(1e-8, 200.0);
         let (horizon, mut curved) = (1.6, 0);
         for k in 1..=20 {
             let tangent = 1e-3 * f64::from(k);
