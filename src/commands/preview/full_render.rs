@@ -1,14 +1,17 @@
 //! "Render": the preview's view and parameters rendered at the scene file's own settings (size,
 //! samples, integrator) in the background, to a named image beside the scene file, with the
-//! metadata `nullpath render` writes. One at a time; the page shows its progress and where it went,
-//! or why it failed. An existing file is replaced only when the request says so, and the image
-//! appears whole or not at all.
+//! metadata `nullpath render` writes and the spacetime and camera actually rendered (the
+//! sliders' and the page's, which the scene text in the metadata does not have). One at a time;
+//! the page shows its progress and where it went, or why it failed. An existing file is replaced
+//! only when the request says so, and the image appears whole or not at all.
 
 use super::state::{RenderJob, Shared};
+use super::view::Eye;
 use crate::commands::provenance::{self, Source};
 use render::film::{check_output_path, write_image, ImageWriteError};
 use render::renderer::{render, Goal, Part};
 use render::scene::Scene;
+use spacetime::Spacetime;
 use std::any::Any;
 use std::panic::AssertUnwindSafe;
 use std::path::{Path, PathBuf};
@@ -33,14 +36,14 @@ pub fn output_path(directory: &Path, name: &str) -> Result<PathBuf, String> {
 }
 
 /// Starts rendering `scene` (the preview's scene at the file's settings) to `output`, unless a
-/// render is already running or, without `overwrite`, `output` exists.
+/// render is already running or, without `overwrite`, `output` exists; returns the job's id.
 pub fn start(
     shared: &Arc<Shared>,
     scene: Scene,
     source: Source,
     output: PathBuf,
     overwrite: bool,
-) -> Result<(), String> {
+) -> Result<u64, String> {
     // `symlink_metadata`: a link is something that exists, even one that leads nowhere.
     if !overwrite && output.symlink_metadata().is_ok() {
         return Err(format!(
@@ -48,18 +51,21 @@ pub fn start(
             output.display()
         ));
     }
-    {
+    let id = {
         let mut inner = shared.lock();
         if inner.job.as_ref().is_some_and(|j| j.state == "running") {
             return Err("a render is already running; wait until it has written its image".into());
         }
+        let id = inner.job.as_ref().map_or(1, |j| j.id + 1);
         inner.job = Some(RenderJob {
+            id,
             output: output.display().to_string(),
             state: "running",
             progress: 0.0,
             message: String::new(),
         });
-    }
+        id
+    };
     let shared = Arc::clone(shared);
     std::thread::spawn(move || {
         // A panic in the render (a film too large for the memory, say) must end the job as a
@@ -75,7 +81,17 @@ pub fn start(
             };
         }
     });
-    Ok(())
+    Ok(id)
+}
+
+/// The spacetime's type and parameters, as `[spacetime]` (or `[views.NAME.spacetime]`) writes them.
+fn spacetime_json(spacetime: &Spacetime) -> serde_json::Value {
+    let mut fields = serde_json::Map::new();
+    fields.insert("type".into(), spacetime.name().into());
+    for p in spacetime.parameters() {
+        fields.insert(p.name.into(), p.value.into());
+    }
+    serde_json::Value::Object(fields)
 }
 
 /// What a panic said, without the thread, file and line the terminal shows.
@@ -95,7 +111,11 @@ fn write(shared: &Shared, scene: &Scene, source: &Source, output: &Path, overwri
         }
     };
     let (film, stats) = render(scene, &never, &progress);
-    let metadata = provenance::metadata(scene, source, Goal::spp(scene.settings.spp), Part::WHOLE, &stats);
+    let mut metadata = provenance::metadata(scene, source, Goal::spp(scene.settings.spp), Part::WHOLE, &stats);
+    metadata.insert("spacetime".into(), spacetime_json(&scene.spacetime).to_string());
+    if let Some(eye) = Eye::of(scene) {
+        metadata.insert("camera".into(), serde_json::json!(eye).to_string());
+    }
     let shown = output.display();
     let cannot = |e: std::io::Error| format!("cannot write image '{shown}': {e}");
     // The image is written whole under a temporary name beside the output (with its extension,
@@ -129,6 +149,12 @@ fn write(shared: &Shared, scene: &Scene, source: &Source, output: &Path, overwri
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_spacetime_is_recorded_as_a_scene_file_writes_it() {
+        let kerr = Spacetime::kerr(0.6, 0.5).expect("valid");
+        assert_eq!(spacetime_json(&kerr), serde_json::json!({ "type": "kerr", "mass": 0.6, "spin": 0.5 }));
+    }
 
     #[test]
     fn outputs_are_plain_image_names() {

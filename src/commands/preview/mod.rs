@@ -10,6 +10,7 @@
 
 mod full_render;
 mod http;
+mod notices;
 mod parameters;
 mod refine;
 mod request;

@@ -48,10 +48,38 @@ function turnAbout(center, axis, angle) {
   camera.up = rotate(camera.up, axis, angle);
 }
 
-function orbit(dx, dy) {
+// The room the scene file's camera stands in (the bounds of the objects around it, from the
+// server): an orbit or the wheel that would take the camera out of it, a little off its walls,
+// pulls the camera in towards the orbit's centre instead, unless `leave` (Alt held, or the box
+// ticked). Outside, the camera sees the walls from behind, or nothing. Flying goes anywhere.
+function keepInRoom(before, center, leave) {
+  const room = preview.state && preview.state.enclosure;
+  if (!room || leave) return;
+  const margin = 0.02 * Math.min(...sub(room.max, room.min));
+  const lo = room.min.map((x) => x + margin), hi = room.max.map((x) => x - margin);
+  const within = (p) => p.every((x, i) => x >= lo[i] && x <= hi[i]);
+  if (!within(before.position) || within(camera.position)) return;
+  if (!within(center)) {
+    camera = before; // no line back in through the centre: the move is not made
+    return;
+  }
+  const d = sub(camera.position, center);
+  let s = 1;
+  d.forEach((x, i) => {
+    if (x > 0) s = Math.min(s, (hi[i] - center[i]) / x);
+    if (x < 0) s = Math.min(s, (lo[i] - center[i]) / x);
+  });
+  const moved = sub(add(center, scale(d, s)), camera.position);
+  camera.position = add(camera.position, moved);
+  camera.look_at = add(camera.look_at, moved);
+}
+
+function orbit(dx, dy, leave) {
+  const before = { ...camera };
   const center = orbitCenter();
   turnAbout(center, [0, 1, 0], -dx * 0.01);
   turnAbout(center, right(), -dy * 0.01);
+  keepInRoom(before, center, leave);
 }
 
 function look(dx, dy) {
@@ -59,12 +87,14 @@ function look(dx, dy) {
   turnAbout(camera.position, right(), -dy * 0.005);
 }
 
-function dolly(amount) {
+function dolly(amount, leave) {
+  const before = { ...camera };
   const center = orbitCenter();
   const offset = scale(sub(camera.position, center), Math.exp(amount));
   const moved = sub(add(center, offset), camera.position);
   camera.position = add(camera.position, moved);
   camera.look_at = add(camera.look_at, moved);
+  keepInRoom(before, center, leave);
 }
 
 function fly(direction) {
@@ -94,24 +124,31 @@ function say(text) {
   $("message").textContent = text;
 }
 
+// Why the last move was refused (a camera inside a horizon), shown over the notices until the
+// camera moves again.
+let refusedMove = "";
+
 async function sendCamera() {
   if (inFlight || !dirty) return;
   inFlight = true;
   dirty = false;
   try {
     await post("/view", camera);
+    refusedMove = "";
   } catch (e) {
-    say(e.message);
+    refusedMove = `The camera cannot go there, so it stays where it was: ${e.message}`;
     dirty = false;
     camera = null; // take the server's camera back at the next poll
   }
   inFlight = false;
+  showNotices();
   if (dirty) sendCamera();
 }
 
 // ---- mouse and keys -------------------------------------------------------------------------
 let drag = null;
 canvas.addEventListener("contextmenu", (e) => e.preventDefault());
+const leaving = (e) => e.altKey || $("free").checked;
 canvas.addEventListener("mousedown", (e) => {
   canvas.focus();
   if (!camera) return;
@@ -124,14 +161,15 @@ window.addEventListener("mousemove", (e) => {
   drag.x = e.clientX;
   drag.y = e.clientY;
   if (dx === 0 && dy === 0) return;
-  (drag.look ? look : orbit)(dx, dy);
+  if (drag.look) look(dx, dy);
+  else orbit(dx, dy, leaving(e));
   moved();
 });
 window.addEventListener("mouseup", () => (drag = null));
 canvas.addEventListener("wheel", (e) => {
   e.preventDefault();
   if (!camera) return;
-  dolly(Math.max(-1, Math.min(1, e.deltaY * 0.001)));
+  dolly(Math.max(-1, Math.min(1, e.deltaY * 0.001)), leaving(e));
   moved();
 }, { passive: false });
 canvas.addEventListener("keydown", (e) => {
@@ -148,31 +186,65 @@ canvas.addEventListener("keydown", (e) => {
 });
 
 // ---- sliders --------------------------------------------------------------------------------
-let sliderKey = "";
+// The server gives each parameter's value and the range it can take with the others as they are
+// (|spin| ≤ mass, …), so a slider offers only values the server accepts. While the user moves a
+// slider, or its value is on the way, the slider and its label show the user's value; then both
+// show the server's, which is the old one if the value was refused (a range gone stale).
+let sliderNames = "";
+const editing = new Set(); // names of the sliders the user is moving or has just set
 let settingsInFlight = Promise.resolve();
 
 function sendSettings(body) {
-  settingsInFlight = settingsInFlight.then(() => post("/settings", body).catch((e) => say(e.message)));
+  const sent = settingsInFlight.then(() => post("/settings", body));
+  settingsInFlight = sent.catch(() => {});
+  return sent;
+}
+
+// A value to send: 4 significant digits (a file reads `mass = 0.6`, not 0.6000000000000001),
+// kept within the range.
+function tidy(x, min, max) {
+  return Math.min(max, Math.max(min, Number(x.toPrecision(4))));
 }
 
 function buildSliders(state) {
-  const key = JSON.stringify([state.spacetime, state.parameters.map((p) => [p.name, p.min, p.max])]);
-  if (key === sliderKey) return;
-  sliderKey = key;
+  const names = JSON.stringify([state.spacetime, state.parameters.map((p) => p.name)]);
+  if (names === sliderNames) return;
+  sliderNames = names;
+  editing.clear();
   const box = $("sliders");
   box.textContent = "";
   for (const p of state.parameters) {
     const label = document.createElement("label");
     label.htmlFor = "param-" + p.name;
-    label.innerHTML = `${p.name}: <span id="param-${p.name}-value"></span>`;
+    label.append(`${p.name}: `);
+    const shown = document.createElement("span");
+    shown.id = `param-${p.name}-value`;
+    label.append(shown);
     const input = document.createElement("input");
-    Object.assign(input, { type: "range", id: "param-" + p.name, min: p.min, max: p.max });
-    input.step = (p.max - p.min) / 1000;
+    // step "any": the thumb sits exactly at the server's value, which the label shows.
+    Object.assign(input, { type: "range", id: "param-" + p.name, min: p.min, max: p.max, step: "any" });
     input.value = p.value;
-    input.addEventListener("change", () => {
-      sendSettings({ parameters: { [p.name]: Number(input.value) } });
+    const chosen = () => tidy(Number(input.value), Number(input.min), Number(input.max));
+    input.addEventListener("input", () => {
+      editing.add(p.name);
+      shown.textContent = chosen().toPrecision(4);
     });
-    input.addEventListener("input", () => ($(`param-${p.name}-value`).textContent = input.value));
+    input.addEventListener("change", async () => {
+      editing.add(p.name);
+      const value = chosen();
+      shown.textContent = value.toPrecision(4);
+      try {
+        await sendSettings({ parameters: { [p.name]: value } });
+        // The value stands until the state that has it arrives: a state read before it was
+        // accepted must not pull the thumb back.
+        const state = await fetchState();
+        if (state) showState(state);
+      } catch (e) {
+        say(`${p.name} ${value} refused: ${e.message}`);
+      }
+      editing.delete(p.name);
+      if (preview.state) showSliders(preview.state);
+    });
     box.append(label, input);
   }
 }
@@ -180,17 +252,20 @@ function buildSliders(state) {
 function showSliders(state) {
   for (const p of state.parameters) {
     const input = $("param-" + p.name);
-    if (input && document.activeElement !== input) input.value = p.value;
-    const shown = $(`param-${p.name}-value`);
-    if (shown) shown.textContent = Number(p.value).toPrecision(4);
+    if (!input || editing.has(p.name)) continue;
+    if (Number(input.min) !== p.min) input.min = p.min;
+    if (Number(input.max) !== p.max) input.max = p.max;
+    input.value = p.value;
+    $(`param-${p.name}-value`).textContent = Number(p.value).toPrecision(4);
   }
   const spp = $("spp");
   if (state.spp && document.activeElement !== spp) spp.value = Math.round(Math.log2(state.spp));
   $("spp-value").textContent = state.spp || "";
+  $("spp-label").textContent = state.integrator === "photon" ? "iterations (photon mapping)" : "samples per pixel";
 }
 
 $("spp").addEventListener("input", () => ($("spp-value").textContent = 2 ** Number($("spp").value)));
-$("spp").addEventListener("change", () => sendSettings({ spp: 2 ** Number($("spp").value) }));
+$("spp").addEventListener("change", () => sendSettings({ spp: 2 ** Number($("spp").value) }).catch((e) => say(e.message)));
 
 // ---- buttons --------------------------------------------------------------------------------
 async function button(path, body) {
@@ -202,12 +277,30 @@ async function button(path, body) {
 }
 $("reset").addEventListener("click", () => {
   camera = null;
+  refusedMove = "";
   button("/reset", {});
 });
 $("save-view").addEventListener("click", () => button("/save-view", { name: $("view-name").value }));
-$("render").addEventListener("click", () =>
-  button("/render", { output: $("output-name").value, overwrite: $("overwrite").checked }),
-);
+
+// The render this page started and whose "rendering to …" the message line shows, until the
+// state says it has ended; then the line says how.
+let renderJob = null;
+$("render").addEventListener("click", async () => {
+  try {
+    const response = await fetch("/render", {
+      method: "POST",
+      headers: { "Content-Type": "application/json" },
+      body: JSON.stringify({ output: $("output-name").value, overwrite: $("overwrite").checked }),
+    });
+    const text = await response.text();
+    if (!response.ok) throw new Error(text.trim());
+    const answer = JSON.parse(text);
+    renderJob = answer.job;
+    say(answer.message);
+  } catch (e) {
+    say(e.message);
+  }
+});
 
 // ---- state and frames -----------------------------------------------------------------------
 let fetchingFrame = false;
@@ -241,12 +334,31 @@ async function showFrame() {
   fetchingFrame = false;
 }
 
+function showNotices() {
+  const notices = (preview.state && !preview.state.error && preview.state.notices) || [];
+  const text = [refusedMove, ...notices].filter(Boolean).join("\n");
+  const box = $("notice");
+  box.textContent = text;
+  box.style.display = text ? "block" : "none";
+}
+
+// The newest generation shown: a state read before a change and answered after it is stale.
+let newestGeneration = 0;
+
 function showState(state) {
+  if (state.generation < newestGeneration) return;
+  newestGeneration = state.generation;
   preview.state = state;
   $("scene").textContent = state.scene;
   const error = $("error");
   error.textContent = state.error || "";
   error.style.display = state.error ? "block" : "none";
+  const job = state.render;
+  if (job && job.id === renderJob && job.state !== "running") {
+    say(job.state === "done" ? job.message : `the render to ${job.output} failed: ${job.message}`);
+    renderJob = null;
+  }
+  showNotices();
   if (state.error) {
     $("status").textContent = "the scene cannot be shown: fix the file and it reloads";
     return;
@@ -256,21 +368,29 @@ function showState(state) {
   buildSliders(state);
   showSliders(state);
   const f = state.frame;
-  const job = state.render;
-  const jobText = job ? ` · render ${job.output}: ${job.state} ${Math.round(100 * job.progress)}% ${job.message}` : "";
+  const jobText = job && job.state === "running" ? ` · rendering ${job.output}: ${Math.round(100 * job.progress)}%` : "";
   const first = preview.firstFrameMs === undefined ? "" : ` · first frame after ${preview.firstFrameMs} ms`;
-  const frameText = f ? `${f.width}×${f.height}, ${f.spp} spp${f.done ? " (done)" : ""}` : "rendering…";
+  const per = f && f.spp > 0 ? `, ${(f.seconds / f.spp).toFixed(2)} s each` : "";
+  const unit = state.integrator === "photon" ? "iterations" : "spp";
+  const frameText = f ? `${f.width}×${f.height}, ${f.spp} ${unit}${per}${f.done ? " (done)" : ""}` : "rendering…";
   $("status").textContent = frameText + first + jobText;
   if (f && (!preview.frame || preview.frame.version !== f.version)) showFrame();
 }
 
-async function poll() {
+// The server's state, or null (and the status line says so) if it cannot be read.
+async function fetchState() {
   try {
     const response = await fetch("/state", { cache: "no-store" });
-    if (response.ok) showState(await response.json());
+    if (response.ok) return await response.json();
   } catch (e) {
     $("status").textContent = "the preview server is not answering";
   }
+  return null;
+}
+
+async function poll() {
+  const state = await fetchState();
+  if (state) showState(state);
   setTimeout(poll, 150);
 }
 // The frame is asked for at once, not only after the first state arrives.

@@ -1,15 +1,23 @@
 //! The render behind the page: for each new generation (the view moved, a slider changed, the
 //! file changed) a quick frame at a quarter of the preview's resolution and one sample, then the
-//! preview's resolution refined sample by sample by the progressive renderer, publishing a frame
-//! a few times a second; a newer generation cancels it within a sample.
+//! preview's resolution refined to the samples asked for, publishing a frame as samples arrive
+//! (a few times a second at most); a newer generation cancels it.
+//!
+//! Both stages render as `nullpath render` does, with the scene's own integrator: path tracing
+//! sample by sample, photon mapping iteration by iteration. (Previewing photon mapping by path
+//! tracing, as the preview once did, made the Kerr room six times slower per sample than the
+//! render it previews: the path tracer aims every light connection through the curved
+//! spacetime, which the photon mapper never does.) A refinement of the preview therefore costs
+//! what a render of the same pixels and samples costs: see BENCHMARKS.md.
 
-use super::state::Shared;
+use super::state::{Shared, Stage};
 use image::ImageEncoder;
 use render::film::{to_rgb8, Film};
-use render::renderer::{Goal, Part, Renderer};
+use render::integrator::photon::{self, PhotonRenderer};
+use render::renderer::{Goal, Part, RenderStats, Renderer};
 use render::scene::Scene;
 use render::settings::IntegratorKind;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
@@ -19,8 +27,10 @@ const PREVIEW_SIDE: u32 = 640;
 const LOW_RESOLUTION_DIVISOR: u32 = 4;
 /// How often a refining render is checked for cancellation.
 const POLL: Duration = Duration::from_millis(30);
-/// How often a refining render publishes its film.
+/// How often at most a refining render publishes its film.
 const PUBLISH_EVERY: Duration = Duration::from_millis(250);
+/// Frames are at least this many times their own cost apart (see [`render_stage`]).
+const FRAME_SHARE: u32 = 20;
 
 /// Renders each generation in turn, forever.
 pub fn refine_forever(shared: &Shared) {
@@ -37,30 +47,36 @@ pub fn refine_forever(shared: &Shared) {
     }
 }
 
-/// The scene at the preview's size (the scene's aspect, longest side at most [`PREVIEW_SIDE`])
-/// with `spp` samples; photon mapping is previewed by path tracing, which refines per sample.
-pub fn preview(scene: &Scene, spp: u32) -> Scene {
+/// `scene` at `width × height`: the size and, where the scene sets how many photons an
+/// iteration traces, that count in proportion to the pixels (the default, one per pixel, is so
+/// already), so that an iteration's photons and camera paths keep the scene's balance.
+fn resized(scene: &Scene, width: u32, height: u32) -> Scene {
     let mut out = scene.clone();
     let s = &mut out.settings;
-    let scale = f64::from(PREVIEW_SIDE) / f64::from(s.width.max(s.height));
-    if scale < 1.0 {
-        s.width = ((f64::from(s.width) * scale).round() as u32).max(1);
-        s.height = ((f64::from(s.height) * scale).round() as u32).max(1);
+    if let Some(photons) = s.photon.per_iteration {
+        let share = f64::from(width) * f64::from(height) / (f64::from(s.width) * f64::from(s.height));
+        s.photon.per_iteration = Some(((photons as f64 * share).round() as u64).max(1));
     }
-    s.spp = spp;
-    if s.integrator == IntegratorKind::Photon {
-        s.integrator = IntegratorKind::Path;
-    }
+    (s.width, s.height) = (width, height);
+    out
+}
+
+/// The scene at the preview's size (the scene's aspect, longest side at most [`PREVIEW_SIDE`])
+/// with `spp` samples per pixel (iterations, for photon mapping), by the scene's integrator.
+pub fn preview(scene: &Scene, spp: u32) -> Scene {
+    let s = &scene.settings;
+    let scale = (f64::from(PREVIEW_SIDE) / f64::from(s.width.max(s.height))).min(1.0);
+    let side = |n: u32| ((f64::from(n) * scale).round() as u32).max(1);
+    let mut out = resized(scene, side(s.width), side(s.height));
+    out.settings.spp = spp;
     out
 }
 
 /// The first frame after a change: [`preview`] at a quarter of the size and one sample.
 pub fn low_resolution(scene: &Scene) -> Scene {
-    let mut out = preview(scene, 1);
-    let s = &mut out.settings;
-    s.width = s.width.div_ceil(LOW_RESOLUTION_DIVISOR);
-    s.height = s.height.div_ceil(LOW_RESOLUTION_DIVISOR);
-    out
+    let full = preview(scene, 1);
+    let s = &full.settings;
+    resized(&full, s.width.div_ceil(LOW_RESOLUTION_DIVISOR), s.height.div_ceil(LOW_RESOLUTION_DIVISOR))
 }
 
 /// The film as a PNG (tone mapped as the scene says).
@@ -78,10 +94,61 @@ pub fn encode_png(film: &Film, scene: &Scene) -> Result<Vec<u8>, String> {
     Ok(png)
 }
 
+/// A progressive render by the scene's integrator, as `nullpath render` makes it.
+enum Progressive<'s> {
+    Path(Renderer<'s>),
+    Photon(PhotonRenderer<'s>),
+}
+
+impl<'s> Progressive<'s> {
+    fn new(scene: &'s Scene) -> Result<Self, String> {
+        if scene.settings.integrator != IntegratorKind::Photon {
+            return Renderer::new(scene, Part::WHOLE, None).map(Progressive::Path).map_err(|e| e.to_string());
+        }
+        // Scene files are checked for it when loaded, and the sliders keep the spacetime's type.
+        if !photon::supports(&scene.spacetime) {
+            return Err(format!(
+                "photon mapping cannot trace light forwards in the {} spacetime",
+                scene.spacetime.name()
+            ));
+        }
+        Ok(Progressive::Photon(PhotonRenderer::new(scene, None)))
+    }
+
+    /// Renders to `spp` samples per pixel (the scene's) unless `cancel` is set; `progress` is
+    /// called as samples (tiles of them) or iterations are done.
+    fn run(&self, spp: u32, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) {
+        match self {
+            Progressive::Path(r) => r.run(Goal::spp(spp), cancel, progress),
+            Progressive::Photon(r) => r.run(cancel, progress),
+        };
+    }
+
+    /// The image so far and its statistics.
+    fn snapshot(&self) -> (Film, RenderStats) {
+        match self {
+            Progressive::Path(r) => {
+                let (film, _, stats) = r.snapshot();
+                (film, stats)
+            }
+            Progressive::Photon(r) => {
+                let (state, stats) = r.snapshot();
+                (r.film(&state), stats)
+            }
+        }
+    }
+}
+
 /// Renders `scene` progressively to its samples per pixel, publishing frames once every pixel
 /// has a sample; false if a newer generation cancelled it (or it could not start).
+///
+/// A frame is taken only when the render has progressed (for photon mapping, once an iteration),
+/// and at most once in [`PUBLISH_EVERY`] and in [`FRAME_SHARE`] times what the last frame cost,
+/// so that taking frames — copying the film, tone mapping, encoding the PNG, all on this thread
+/// beside the render's — never costs the render more than a small share of the machine.
+/// (Taking one every 250 ms whatever happened cost the Kerr room a fifth of its two cores.)
 fn render_stage(shared: &Shared, generation: u64, scene: &Scene, last: bool) -> bool {
-    let renderer = match Renderer::new(scene, Part::WHOLE, None) {
+    let renderer = match Progressive::new(scene) {
         Ok(r) => r,
         Err(e) => {
             eprintln!("nullpath preview: {e}");
@@ -89,35 +156,40 @@ fn render_stage(shared: &Shared, generation: u64, scene: &Scene, last: bool) -> 
         }
     };
     let cancel = AtomicBool::new(false);
+    // Counts the render's reports of progress: a frame is worth taking only after one.
+    let progress = AtomicU64::new(0);
     let (finished_tx, finished) = mpsc::channel();
     std::thread::scope(|s| {
         s.spawn(|| {
-            renderer.run(Goal::spp(scene.settings.spp), &cancel, &|_, _| {});
+            renderer.run(scene.settings.spp, &cancel, &|_, _| {
+                progress.fetch_add(1, Ordering::Relaxed);
+            });
             // The receiver lives until this scope ends.
             let _ = finished_tx.send(());
         });
-        let mut published = (Instant::now(), 0);
+        let (mut shown, mut samples, mut next) = (0, 0, Instant::now());
         loop {
             let done = finished.recv_timeout(POLL).is_ok();
             if shared.generation() != generation {
                 cancel.store(true, Ordering::Relaxed);
             }
-            let due = published.0.elapsed() >= PUBLISH_EVERY;
-            if cancel.load(Ordering::Relaxed) || !(done || due) {
-                if done {
-                    break;
-                }
-                continue;
-            }
-            let (film, _, stats) = renderer.snapshot();
-            if stats.spp_min >= 1 && (done || stats.samples > published.1) {
-                match encode_png(&film, scene) {
-                    Ok(png) => {
-                        shared.publish(generation, png, (film.width(), film.height()), stats.spp_min, done && last)
+            let reported = progress.load(Ordering::Relaxed);
+            let due = reported != shown && Instant::now() >= next;
+            if !cancel.load(Ordering::Relaxed) && (done || due) {
+                let began = Instant::now();
+                let (film, stats) = renderer.snapshot();
+                if stats.spp_min >= 1 && (done || stats.samples > samples) {
+                    match encode_png(&film, scene) {
+                        Ok(png) => {
+                            let size = (film.width(), film.height());
+                            shared.publish(generation, png, size, Stage { stats, done: done && last });
+                        }
+                        Err(e) => eprintln!("nullpath preview: cannot encode a frame: {e}"),
                     }
-                    Err(e) => eprintln!("nullpath preview: cannot encode a frame: {e}"),
+                    samples = stats.samples;
                 }
-                published = (Instant::now(), stats.samples);
+                shown = reported;
+                next = Instant::now() + PUBLISH_EVERY.max(began.elapsed() * FRAME_SHARE);
             }
             if done {
                 break;
@@ -132,13 +204,27 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_first_frame_is_small_and_the_preview_keeps_the_aspect() {
+    fn the_first_frame_is_small_and_the_preview_keeps_the_aspect_and_the_integrator() {
         let text = "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n[render]\nwidth = 1920\nheight = 1080\n\
-                    spp = 500\nintegrator = \"photon\"\n";
+                    spp = 500\nintegrator = \"photon\"\nphotons_per_iteration = 2073600\n";
         let scene = scene::parse(text, "t.toml", ".".as_ref()).expect("valid scene");
         let p = preview(&scene, 32).settings;
-        assert_eq!((p.width, p.height, p.spp, p.integrator), (640, 360, 32, IntegratorKind::Path));
+        assert_eq!((p.width, p.height, p.spp, p.integrator), (640, 360, 32, IntegratorKind::Photon));
+        assert_eq!(p.photon.per_iteration, Some(640 * 360), "one photon a pixel, as the scene has");
         let low = low_resolution(&scene).settings;
-        assert_eq!((low.width, low.height, low.spp), (160, 90, 1));
+        assert_eq!((low.width, low.height, low.spp, low.integrator), (160, 90, 1, IntegratorKind::Photon));
+        assert_eq!(low.photon.per_iteration, Some(160 * 90));
+        // A scene no larger than the preview is previewed at its own size.
+        let small = preview(
+            &scene::parse(
+                "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n[render]\nwidth = 96\nheight = 72\n",
+                "t.toml",
+                ".".as_ref(),
+            )
+            .expect("valid scene"),
+            4,
+        )
+        .settings;
+        assert_eq!((small.width, small.height, small.integrator), (96, 72, IntegratorKind::Path));
     }
 }

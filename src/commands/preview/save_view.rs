@@ -1,5 +1,7 @@
-//! "Save view": writes the preview's camera into the scene file as a `[views.NAME]` table
-//! (docs/scene-format.md), so that `nullpath render --view NAME` renders it. The edit goes through
+//! "Save view": writes the preview's camera into the scene file as a `[views.NAME]` table, with
+//! the sliders' spacetime parameters as `[views.NAME.spacetime]` where they differ from the
+//! file's (docs/scene-format.md), so that `nullpath render --view NAME` renders what the page
+//! shows. The edit goes through
 //! `toml_edit`, which keeps the rest of the file — comments, order, spacing — as the user wrote
 //! it; the file is written only if the edited text still loads, from the new view, and it is
 //! replaced atomically: a reader (the file watcher, an editor) sees the old file or the new one,
@@ -8,6 +10,7 @@
 use super::view::Eye;
 use render::camera::Projection;
 use render::scene::Scene;
+use spacetime::Spacetime;
 use std::io::Write as _;
 use std::path::Path;
 use toml_edit::{value, Array, DocumentMut, Item, Table};
@@ -42,9 +45,10 @@ fn vector(v: [f64; 3]) -> Item {
     value(v.iter().map(|&c| rounded(c)).collect::<Array>())
 }
 
-/// `text` (a scene file) with the view `name` set to `eye`, seen through `scene`'s projection
-/// from the camera's region; an existing view of that name is replaced.
-pub fn with_view(text: &str, name: &str, eye: &Eye, scene: &Scene) -> Result<String, String> {
+/// `text` (a scene file, whose spacetime is `file`) with the view `name` set to `eye`, seen
+/// through `scene`'s projection from the camera's region, in `scene`'s spacetime; an existing
+/// view of that name is replaced.
+pub fn with_view(text: &str, name: &str, eye: &Eye, scene: &Scene, file: &Spacetime) -> Result<String, String> {
     check_name(name)?;
     let mut doc: DocumentMut = text.parse().map_err(|e| format!("the scene file is not valid TOML: {e}"))?;
     let views = doc.entry("views").or_insert_with(|| {
@@ -76,6 +80,16 @@ pub fn with_view(text: &str, name: &str, eye: &Eye, scene: &Scene) -> Result<Str
     if scene.camera.region == spacetime::Region::Lower {
         view.insert("region", value("lower"));
     }
+    // Every parameter, not only those moved, so that the view shows this spacetime even after
+    // `[spacetime]` is edited; exactly, not rounded as the pose is, since a rounded spin may
+    // exceed a rounded mass. A view in the file's own spacetime follows `[spacetime]`.
+    if scene.spacetime != *file {
+        let mut parameters = Table::new();
+        for p in scene.spacetime.parameters() {
+            parameters.insert(p.name, value(p.value));
+        }
+        view.insert("spacetime", Item::Table(parameters));
+    }
     views.insert(name, Item::Table(view));
     Ok(doc.to_string())
 }
@@ -90,12 +104,13 @@ pub enum SaveError {
     Io(String),
 }
 
-/// Saves `eye` as the view `name` of the scene file at `path`; the edited file must load from it.
-/// The caller keeps other writers of the file out until it returns.
-pub fn save(path: &Path, name: &str, eye: &Eye, scene: &Scene) -> Result<(), SaveError> {
+/// Saves `eye` as the view `name` of the scene file at `path`, in `scene`'s spacetime (the
+/// file's is `file`); the edited file must load from it. The caller keeps other writers of the
+/// file out until it returns.
+pub fn save(path: &Path, name: &str, eye: &Eye, scene: &Scene, file: &Spacetime) -> Result<(), SaveError> {
     let shown = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| SaveError::Io(format!("cannot read {shown}: {e}")))?;
-    let edited = with_view(&text, name, eye, scene).map_err(SaveError::Refused)?;
+    let edited = with_view(&text, name, eye, scene, file).map_err(SaveError::Refused)?;
     let base = match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => dir,
         _ => Path::new("."),
@@ -134,6 +149,7 @@ fn replace(path: &Path, text: &str) -> std::io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::commands::preview::view::Overrides;
 
     const TEXT: &str = "# my room\n[camera]   # where I stand\nposition = [0, 0, 7]\nlook_at = [0, 0, 0]\n\n\
                         [[objects]]\nshape = { type = \"sphere\", center = [0, 0, 0], radius = 1 }\n";
@@ -145,21 +161,45 @@ mod tests {
     #[test]
     fn a_view_is_added_and_the_rest_kept() {
         let scene = scene::parse(TEXT, "t.toml", ".".as_ref()).expect("valid");
-        let edited = with_view(TEXT, "corner", &eye(), &scene).expect("edits");
+        let edited = with_view(TEXT, "corner", &eye(), &scene, &scene.spacetime).expect("edits");
         assert!(edited.starts_with(TEXT), "the user's text is kept as written:\n{edited}");
         assert!(edited.contains("[views.corner]\nposition = [1.0, 2.0, 3.0]\n"), "{edited}");
         let seen = scene::parse_view(&edited, "t.toml", ".".as_ref(), Some("corner")).expect("loads");
         assert!((seen.camera.position - render::geometry::Vec3::new(1.0, 2.0, 3.0)).length() < 1e-12);
-        let again = with_view(&edited, "corner", &Eye { fov: 20.0, ..eye() }, &scene).expect("edits");
+        let again = with_view(&edited, "corner", &Eye { fov: 20.0, ..eye() }, &scene, &scene.spacetime).expect("edits");
         assert_eq!(scene::view_names(&again), ["corner"], "replaced, not added twice");
         assert!(again.contains("fov = 20.0"), "{again}");
+    }
+
+    #[test]
+    fn the_sliders_spacetime_is_saved_with_the_view() {
+        let text = format!("[spacetime]\ntype = \"kerr\"\nmass = 0.3\nspin = 0.1\n{TEXT}");
+        let file = scene::parse(&text, "t.toml", ".".as_ref()).expect("valid");
+        let overrides = Overrides {
+            eye: Some(eye()),
+            parameters: [("mass".to_string(), 0.603), ("spin".to_string(), 0.5)].into(),
+            spp: None,
+        };
+        let shown = overrides.apply(&file).expect("in range");
+        let edited = with_view(&text, "heavy", &eye(), &shown, &file.spacetime).expect("edits");
+        assert!(edited.contains("[views.heavy.spacetime]\nmass = 0.603\nspin = 0.5\n"), "{edited}");
+        let seen = scene::parse_view(&edited, "t.toml", ".".as_ref(), Some("heavy")).expect("loads");
+        assert_eq!(seen.spacetime, shown.spacetime, "the view renders the spacetime the page shows");
+        assert_eq!(scene::parse(&edited, "t.toml", ".".as_ref()).expect("loads").spacetime, file.spacetime);
+        // In the file's own spacetime, the view has none of its own.
+        let plain = with_view(&text, "plain", &eye(), &file, &file.spacetime).expect("edits");
+        assert!(!plain.contains("[views.plain.spacetime]"), "{plain}");
+        // A hand-written view's spacetime is checked as [spacetime] is.
+        let spun = edited.replace("spin = 0.5", "spin = 0.7");
+        let error = scene::parse(&spun, "t.toml", ".".as_ref()).expect_err("|spin| > mass").to_string();
+        assert!(error.contains("views.heavy.spacetime") && error.contains("spin"), "{error}");
     }
 
     #[test]
     fn bad_names_are_refused() {
         let scene = scene::parse(TEXT, "t.toml", ".".as_ref()).expect("valid");
         for name in ["", "a b", "x]\n[camera", "é", &"v".repeat(65)] {
-            assert!(with_view(TEXT, name, &eye(), &scene).is_err(), "{name:?}");
+            assert!(with_view(TEXT, name, &eye(), &scene, &scene.spacetime).is_err(), "{name:?}");
         }
     }
 

@@ -151,7 +151,12 @@ fn post(app: &App, path: &str, body: &str) -> Reply {
                 Err(SaveError::Io(e)) => text(500, &e),
             };
         }
-        _ => parse::<RenderRequest>(body).and_then(|r| start_render(app, &r.output, r.overwrite)),
+        _ => {
+            return match parse::<RenderRequest>(body).and_then(|r| start_render(app, &r.output, r.overwrite)) {
+                Ok((message, job)) => json(&serde_json::json!({ "message": message, "job": job })),
+                Err(e) => text(400, &e),
+            };
+        }
     })
 }
 
@@ -160,14 +165,19 @@ fn save(app: &App, name: &str) -> Result<String, SaveError> {
     let path = app.source.path.as_ref().ok_or_else(|| {
         refused("the built-in default scene has no file to save a view into: start the preview with a scene file")
     })?;
-    let current = app.shared.lock().current.clone().map_err(SaveError::Refused)?;
+    let (current, file) = {
+        let inner = app.shared.lock();
+        (inner.current.clone().map_err(SaveError::Refused)?, inner.loaded.clone().map_err(SaveError::Refused)?)
+    };
     let eye = Eye::of(&current).ok_or_else(|| refused("the scene has no camera pose"))?;
     let _writing = app.writing.lock().unwrap_or_else(PoisonError::into_inner);
-    save_view::save(path, name, &eye, &current)?;
-    Ok(format!("saved [views.{name}] in {}: nullpath render {} --view {name}", path.display(), path.display()))
+    save_view::save(path, name, &eye, &current, &file.spacetime)?;
+    let with = if current.spacetime == file.spacetime { "" } else { " with the sliders' spacetime" };
+    Ok(format!("saved [views.{name}]{with} in {}: nullpath render {} --view {name}", path.display(), path.display()))
 }
 
-fn start_render(app: &App, output: &str, overwrite: bool) -> Result<String, String> {
+/// Starts the render; returns what to tell the page and the job's id.
+fn start_render(app: &App, output: &str, overwrite: bool) -> Result<(String, u64), String> {
     let path = full_render::output_path(app.source.directory(), output)?;
     let current = app.shared.lock().current.clone()?;
     let text = match &app.source.path {
@@ -175,6 +185,6 @@ fn start_render(app: &App, output: &str, overwrite: bool) -> Result<String, Stri
         None => DEFAULT_SCENE.to_string(),
     };
     let source = provenance::Source { name: app.source.name(), text, view: None, time: 0.0 };
-    full_render::start(&app.shared, (*current).clone(), source, path.clone(), overwrite)?;
-    Ok(format!("rendering to {}", path.display()))
+    let job = full_render::start(&app.shared, (*current).clone(), source, path.clone(), overwrite)?;
+    Ok((format!("rendering to {}", path.display()), job))
 }

@@ -3,9 +3,13 @@
 //! frame. Every change that alters the picture bumps the generation; a render of an older
 //! generation stops and its frames are no longer published.
 
+use super::notices::{enclosure, notices};
 use super::parameters::{parameters, Parameter};
 use super::view::{Eye, Overrides};
+use render::integrator::FateCounts;
+use render::renderer::RenderStats;
 use render::scene::Scene;
+use render::settings::IntegratorKind;
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::Duration;
 
@@ -23,11 +27,23 @@ pub struct Frame {
     pub spp: u32,
     /// The last frame of its generation: refined to the target.
     pub done: bool,
+    /// Seconds its render has taken so far (the stage's, from its start).
+    pub seconds: f64,
+    /// How its camera paths ended.
+    pub fates: FateCounts,
+}
+
+/// A stage's render as a frame shows it: its statistics, and whether it is the generation's last.
+pub struct Stage {
+    pub stats: RenderStats,
+    pub done: bool,
 }
 
 /// A full-quality render started from the page.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct RenderJob {
+    /// Counts the renders started, so that the page can tell the one it asked for.
+    pub id: u64,
     pub output: String,
     /// `"running"`, `"done"` or `"failed"`.
     pub state: &'static str,
@@ -129,32 +145,47 @@ impl Shared {
         (inner.generation, inner.current.clone(), spp)
     }
 
-    /// Publishes a frame of generation `generation`, unless a newer one has begun.
-    pub fn publish(&self, generation: u64, png: Vec<u8>, (width, height): (u32, u32), spp: u32, done: bool) {
+    /// Publishes a `width × height` frame of generation `generation`, unless a newer one has begun.
+    pub fn publish(&self, generation: u64, png: Vec<u8>, (width, height): (u32, u32), stage: Stage) {
         let mut inner = self.lock();
         if inner.generation != generation {
             return;
         }
         let version = inner.frame.as_ref().map_or(1, |f| f.version + 1);
-        inner.frame = Some(Frame { png: Arc::new(png), version, generation, width, height, spp, done });
+        let Stage { stats, done } = stage;
+        inner.frame = Some(Frame {
+            png: Arc::new(png),
+            version,
+            generation,
+            width,
+            height,
+            spp: stats.spp_min,
+            done,
+            seconds: stats.seconds,
+            fates: stats.paths.fates,
+        });
     }
 
     /// The state as the page reads it (`GET /state`).
     pub fn report(&self, scene_name: &str) -> serde_json::Value {
         let inner = self.lock();
         let error = inner.current.as_ref().err();
-        let (camera, spacetime, sliders, spp) = match (&inner.current, &inner.loaded) {
+        let frame = inner.frame.as_ref();
+        let (camera, spacetime, sliders, spp, integrator, room, said) = match (&inner.current, &inner.loaded) {
             (Ok(current), Ok(loaded)) => (
                 Eye::of(current),
                 Some(current.spacetime.name()),
                 parameters(&current.spacetime, &loaded.spacetime),
                 Some(inner.overrides.spp(loaded)),
+                Some(integrator_name(current.settings.integrator)),
+                enclosure(loaded).map(|b| serde_json::json!({ "min": b.min.to_array(), "max": b.max.to_array() })),
+                notices(current, loaded, frame.filter(|f| f.generation == inner.generation)),
             ),
-            _ => (None, None, Vec::<Parameter>::new(), None),
+            _ => (None, None, Vec::<Parameter>::new(), None, None, None, Vec::new()),
         };
-        let frame = inner.frame.as_ref().map(|f| {
+        let frame = frame.map(|f| {
             serde_json::json!({ "version": f.version, "generation": f.generation, "width": f.width, "height": f.height,
-                "spp": f.spp, "done": f.done })
+                "spp": f.spp, "done": f.done, "seconds": f.seconds })
         });
         serde_json::json!({
             "scene": scene_name,
@@ -166,8 +197,20 @@ impl Shared {
             "parameters": sliders,
             "spp": spp,
             "max_spp": super::view::MAX_SPP,
+            "integrator": integrator,
+            "enclosure": room,
+            "notices": said,
             "frame": frame,
             "render": inner.job,
         })
+    }
+}
+
+/// The integrator as scene files name it: the page calls photon mapping's samples iterations.
+fn integrator_name(kind: IntegratorKind) -> &'static str {
+    match kind {
+        IntegratorKind::Path => "path",
+        IntegratorKind::BruteForce => "brute-force",
+        IntegratorKind::Photon => "photon",
     }
 }
