@@ -192,7 +192,9 @@ fn load(
     encoding: Encoding,
 ) -> Result<(usize, usize, Vec<Rgb>), String> {
     let what = named("image", image.index(), image.name());
-    let (what, bytes, mime_type) = match image.source() {
+    // The gltf crate unwraps a `uri` an image may lack, and a `bufferView` image's `mimeType`,
+    // which its validation does not require.
+    let (what, bytes, mime_type) = match contained(|| image.source(), &what)? {
         gltf::image::Source::Uri { uri, mime_type } => {
             let what = format!("{what} ('{}')", short(uri));
             let bytes = sources.read(uri).map_err(|e| format!("{what}: {e}"))?;
