@@ -355,7 +355,7 @@ function showState(state) {
   error.style.display = state.error ? "block" : "none";
   const job = state.render;
   if (job && job.id === renderJob && job.state !== "running") {
-    say(job.state === "done" ? job.message : `the render to ${job.output} failed: ${job.message}`);
+    say(job.message); // "wrote …", or why it failed ("cannot write image …", "the render failed: …")
     renderJob = null;
   }
   showNotices();
