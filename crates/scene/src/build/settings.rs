@@ -85,7 +85,7 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
     let geodesic_rtol = t.or("geodesic_rtol", d.geodesic_rtol, |n| n.f64())?;
     // Below 10⁻¹³ the tolerance asks each step for less error than double precision's rounding
     // accumulates over a ray's steps: it only multiplies the steps (10⁻³⁰⁰ ran ~3000× slower).
-    if !(geodesic_rtol >= 1e-13 && geodesic_rtol < 1.0) {
+    if !(1e-13..1.0).contains(&geodesic_rtol) {
         return Err(t.loc("geodesic_rtol").err(format!(
             "must be in [1e-13, 1), got {}: tighter than 1e-13 is below double precision's rounding over a \
              ray's steps and only adds steps",
