@@ -174,7 +174,7 @@ fn fuzz_scene_reader() {
     let stats = mutate::drive(
         &mut runner,
         &seeds,
-        &mut mutate::random(0x73_6365_6e65),
+        &mut mutate::random(0x0073_6365_6e65),
         mutate::iterations(8_000),
         |random, input, other| {
             // Bytes that are not UTF-8 stop the reader at once: a few are enough.
