@@ -315,8 +315,12 @@ fn a_repeated_sigterm_is_the_same_request_and_the_checkpoint_is_written() {
         }
         let result = child.wait_with_output().unwrap();
         let message = stderr(&result);
-        assert_eq!(result.status.code(), Some(143), "run {run}: {message}");
-        assert!(message.contains("interrupted by SIGTERM"), "run {run}: {message}");
+        // When a SIGHUP follows, both may be pending when the signal thread wakes, and it reads
+        // pending signals in number order: either names the stop, and neither loses the work.
+        let sighup = run == 9 && message.contains("interrupted by SIGHUP");
+        let (code, name) = if sighup { (129, "SIGHUP") } else { (143, "SIGTERM") };
+        assert_eq!(result.status.code(), Some(code), "run {run}: {message}");
+        assert!(message.contains(&format!("interrupted by {name}")), "run {run}: {message}");
         assert!(message.contains(&format!("the work is in the checkpoint {}", checkpoint.display())), "run {run}");
         assert!(message.contains("--resume"), "run {run}: {message}");
         assert!(info(&checkpoint, "spp").parse::<u32>().unwrap() > 0, "run {run}");
