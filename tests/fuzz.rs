@@ -22,6 +22,12 @@ fn limit() -> Duration {
     Duration::from_secs(if cfg!(debug_assertions) { 20 } else { 2 })
 }
 
+/// How many inputs a target makes: `release` in optimised builds (a few seconds each), a quarter
+/// of it in unoptimised ones, unless `NULLPATH_FUZZ_ITERATIONS` says otherwise.
+fn budget(release: usize) -> usize {
+    mutate::iterations(if cfg!(debug_assertions) { release / 4 } else { release })
+}
+
 /// A folder of this process and thread, for the files a check writes.
 fn scratch(target: &str) -> PathBuf {
     let thread = format!("{:?}", std::thread::current().id()).replace(|c: char| !c.is_ascii_alphanumeric(), "");
@@ -170,12 +176,12 @@ fn fuzz_scene_reader() {
         scene::parse(text, &seed.name, &mutate::corpus_dir("scene")).unwrap_or_else(|e| panic!("the corpus: {e}"));
     }
     let mutator = Mutator::new(SCENE_TOKENS, SCENE_NESTING, 256 * 1024);
-    let mut runner = Runner::threaded("scene", limit(), check_scene);
+    let mut runner = Runner::watched("scene", limit(), check_scene);
     let stats = mutate::drive(
         &mut runner,
         &seeds,
         &mut mutate::random(0x0073_6365_6e65),
-        mutate::iterations(8_000),
+        budget(12_000),
         |random, input, other| {
             // Bytes that are not UTF-8 stop the reader at once: a few are enough.
             let mutant = mutator.mutate(random, input, other);
@@ -336,12 +342,12 @@ fn fuzz_gltf_importer() {
         assert_eq!(check_gltf(&seed.bytes), Ok("loaded"), "the corpus: {}", seed.name);
     }
     let mutator = Mutator::new(GLTF_TOKENS, GLTF_NESTING, 256 * 1024);
-    let mut runner = Runner::threaded("gltf", limit(), check_gltf);
+    let mut runner = Runner::watched("gltf", limit(), check_gltf);
     let stats = mutate::drive(
         &mut runner,
         &seeds,
         &mut mutate::random(0x676c_7446),
-        mutate::iterations(4_000),
+        budget(8_000),
         |random, input, other| mutate_gltf(&mutator, random, input, other),
         |outcome| outcome == "loaded",
     );
@@ -474,7 +480,7 @@ fn fuzz_expression_compiler() {
         &mut runner,
         &seeds,
         &mut mutate::random(0x6578_7072),
-        mutate::iterations(150_000),
+        budget(200_000),
         |random, input, other| mutator.mutate(random, input, other),
         |outcome| outcome == "compiled",
     );
@@ -525,12 +531,12 @@ fn check_metric(input: &[u8]) -> Verdict {
 fn fuzz_expressions_in_scenes() {
     let seeds: Vec<Seed> = mutate::corpus("expression", &["expr"]);
     let mutator = Mutator::new(EXPRESSION_TOKENS, EXPRESSION_NESTING, 16 * 1024);
-    let mut runner = Runner::threaded("expression_metric", limit(), check_metric);
+    let mut runner = Runner::watched("expression_metric", limit(), check_metric);
     let stats = mutate::drive(
         &mut runner,
         &seeds,
         &mut mutate::random(0x6d65_7472_6963),
-        mutate::iterations(50_000),
+        budget(100_000),
         |random, input, other| mutator.mutate(random, input, other),
         |outcome| outcome == "loaded",
     );

@@ -17,9 +17,11 @@ use serde_json::Value;
 use std::cell::{Cell, RefCell};
 use std::collections::BTreeMap;
 use std::hash::{Hash, Hasher};
+use std::io::Write;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
-use std::sync::{mpsc, Arc, Once};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, Once};
 use std::time::{Duration, Instant};
 
 /// Overrides every target's number of inputs: `NULLPATH_FUZZ_ITERATIONS=1000000`.
@@ -608,7 +610,7 @@ pub fn mutate_json(random: &mut Random, doc: &mut Value, other: &Value) {
 /// `"refused"`), or what is wrong with how the code under test answered it.
 pub type Verdict = Result<&'static str, String>;
 
-type Check = dyn Fn(&[u8]) -> Verdict + Send + Sync;
+type Check = dyn Fn(&[u8]) -> Verdict;
 
 /// How a check ended.
 #[derive(Clone, Debug)]
@@ -691,28 +693,40 @@ fn check_here(check: &Check, input: &[u8]) -> Report {
     Report { ending, contained, elapsed }
 }
 
-/// A thread that checks inputs, so that one that runs too long is noticed.
-struct Worker {
-    inputs: mpsc::Sender<Vec<u8>>,
-    reports: mpsc::Receiver<Report>,
+/// The input being checked and since when, for the watchdog.
+#[derive(Default)]
+struct Watch {
+    current: Mutex<Option<(Instant, Vec<u8>)>>,
+    done: AtomicBool,
 }
 
-impl Worker {
-    fn spawn(name: &str, check: Arc<Check>) -> Worker {
-        let (inputs, inbox) = mpsc::channel::<Vec<u8>>();
-        let (outbox, reports) = mpsc::channel();
-        std::thread::Builder::new()
-            .name(format!("fuzz-{name}"))
-            .spawn(move || {
-                for input in inbox {
-                    if outbox.send(check_here(&*check, &input)).is_err() {
-                        break;
-                    }
+/// A thread that ends the process when the input being checked has run past `limit`: a hang
+/// would never return to be timed. It saves the input and says so on standard error (past the
+/// test harness's capture, which the exit would lose).
+fn watchdog(target: &'static str, limit: Duration) -> Arc<Watch> {
+    let watch = Arc::new(Watch::default());
+    let watched = watch.clone();
+    std::thread::Builder::new()
+        .name(format!("fuzz-{target}-watchdog"))
+        .spawn(move || {
+            while !watched.done.load(Ordering::Relaxed) {
+                std::thread::sleep((limit / 4).min(Duration::from_millis(100)));
+                let current = watched.current.lock().unwrap_or_else(|e| e.into_inner());
+                if let Some((start, input)) = current.as_ref().filter(|(start, _)| start.elapsed() > limit) {
+                    let path = save(target, input, None);
+                    let _ = writeln!(
+                        std::io::stderr(),
+                        "fuzz target {target}: an input has run for {:?}, more than {limit:?}; saved to {}: {}",
+                        start.elapsed(),
+                        path.display(),
+                        shown(input)
+                    );
+                    std::process::exit(101);
                 }
-            })
-            .unwrap();
-        Worker { inputs, reports }
-    }
+            }
+        })
+        .unwrap();
+    watch
 }
 
 /// Counts of a run, for its summary and for tests that want every outcome reached.
@@ -729,47 +743,36 @@ pub struct Stats {
 }
 
 /// Checks inputs for one target, failing the test on the first that panics, fails its check or
-/// runs past the time limit.
+/// runs past the time limit. Inputs are checked on the calling thread.
 pub struct Runner {
     target: &'static str,
     limit: Duration,
-    check: Arc<Check>,
-    /// `None`: inputs are checked on the calling thread (fast, for checks that cannot hang), and
-    /// the limit applies once they return.
-    worker: Option<Worker>,
-    threaded: bool,
+    check: Box<Check>,
+    /// `None`: the limit applies once an input returns (for checks that cannot hang).
+    watch: Option<Arc<Watch>>,
     trace: bool,
     started: Instant,
     pub stats: Stats,
 }
 
 impl Runner {
-    /// Checks on a worker thread: an input that runs past `limit` fails the test even if it
-    /// never returns.
-    pub fn threaded(
-        target: &'static str,
-        limit: Duration,
-        check: impl Fn(&[u8]) -> Verdict + Send + Sync + 'static,
-    ) -> Self {
-        Self::new(target, limit, Arc::new(check), true)
+    /// With a watchdog thread: an input that runs past `limit` ends the run even if it never
+    /// returns.
+    pub fn watched(target: &'static str, limit: Duration, check: impl Fn(&[u8]) -> Verdict + 'static) -> Self {
+        Self::new(target, limit, Box::new(check), Some(watchdog(target, limit)))
     }
 
-    /// Checks on the calling thread; an input that took longer than `limit` fails the test.
-    pub fn inline(
-        target: &'static str,
-        limit: Duration,
-        check: impl Fn(&[u8]) -> Verdict + Send + Sync + 'static,
-    ) -> Self {
-        Self::new(target, limit, Arc::new(check), false)
+    /// An input that took longer than `limit` fails the test once it returns.
+    pub fn inline(target: &'static str, limit: Duration, check: impl Fn(&[u8]) -> Verdict + 'static) -> Self {
+        Self::new(target, limit, Box::new(check), None)
     }
 
-    fn new(target: &'static str, limit: Duration, check: Arc<Check>, threaded: bool) -> Self {
+    fn new(target: &'static str, limit: Duration, check: Box<Check>, watch: Option<Arc<Watch>>) -> Self {
         Self {
             target,
             limit,
             check,
-            worker: None,
-            threaded,
+            watch,
             trace: std::env::var_os(TRACE_VAR).is_some(),
             started: Instant::now(),
             stats: Stats::default(),
@@ -777,23 +780,18 @@ impl Runner {
     }
 
     fn attempt(&mut self, input: &[u8]) -> Report {
-        if !self.threaded {
-            let mut report = check_here(&*self.check, input);
-            if report.elapsed > self.limit && matches!(report.ending, Ending::Passed(_)) {
-                report.ending = Ending::TimedOut;
+        let watch = |current| {
+            if let Some(watch) = &self.watch {
+                *watch.current.lock().unwrap_or_else(|e| e.into_inner()) = current;
             }
-            return report;
+        };
+        watch(Some((Instant::now(), input.to_vec())));
+        let mut report = check_here(&*self.check, input);
+        watch(None);
+        if report.elapsed > self.limit && matches!(report.ending, Ending::Passed(_)) {
+            report.ending = Ending::TimedOut;
         }
-        let worker = self.worker.get_or_insert_with(|| Worker::spawn(self.target, self.check.clone()));
-        worker.inputs.send(input.to_vec()).unwrap();
-        match worker.reports.recv_timeout(self.limit) {
-            Ok(report) => report,
-            Err(_) => {
-                // The worker is still at it: leave it, and start another for what follows.
-                self.worker = None;
-                Report { ending: Ending::TimedOut, contained: Vec::new(), elapsed: self.limit }
-            }
-        }
+        report
     }
 
     /// Checks `input`; its outcome, or the test fails with the input saved and minimised.
@@ -844,12 +842,7 @@ impl Runner {
     }
 
     fn fail(&mut self, input: &[u8], ending: Ending) -> ! {
-        let dir = crash_dir(self.target);
-        std::fs::create_dir_all(&dir).unwrap();
-        let mut hasher = std::collections::hash_map::DefaultHasher::new();
-        input.hash(&mut hasher);
-        let path = dir.join(format!("{:016x}", hasher.finish()));
-        std::fs::write(&path, input).unwrap();
+        let path = save(self.target, input, None);
         let what = match &ending {
             Ending::Failed(message) => format!("the check failed: {message}"),
             Ending::Panicked(message) => format!("a panic: {message}"),
@@ -860,8 +853,7 @@ impl Runner {
             (input.to_vec(), path.clone())
         } else {
             let minimal = self.minimise(input, &ending);
-            let minimal_path = path.with_extension("min");
-            std::fs::write(&minimal_path, &minimal).unwrap();
+            let minimal_path = save(self.target, input, Some((&minimal, "min")));
             (minimal, minimal_path)
         };
         panic!(
@@ -893,6 +885,30 @@ impl Runner {
         );
         s.clone()
     }
+}
+
+impl Drop for Runner {
+    fn drop(&mut self) {
+        if let Some(watch) = &self.watch {
+            watch.done.store(true, Ordering::Relaxed);
+        }
+    }
+}
+
+/// Saves the failing `input` of `target` (or, given `(bytes, extension)`, those bytes named after
+/// it) to the crash folder; where.
+fn save(target: &str, input: &[u8], derived: Option<(&[u8], &str)>) -> PathBuf {
+    let dir = crash_dir(target);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    input.hash(&mut hasher);
+    let path = dir.join(format!("{:016x}", hasher.finish()));
+    let (path, bytes) = match derived {
+        Some((bytes, extension)) => (path.with_extension(extension), bytes),
+        None => (path, input),
+    };
+    std::fs::write(&path, bytes).unwrap();
+    path
 }
 
 /// Where a target's failing inputs are saved: `target/tmp/fuzz-crashes/<target>/`.
@@ -940,7 +956,7 @@ pub fn drive(
             mutant = mutate(random, &mutant, &pool[other]);
         }
         let outcome = runner.run(&mutant);
-        if keep(outcome) && mutant.len() <= 64 * 1024 {
+        if keep(outcome) && mutant.len() <= 16 * 1024 {
             if pool.len() < seeds.len() + POOL {
                 pool.push(mutant);
             } else {
