@@ -799,6 +799,8 @@ impl Runner {
         if self.trace {
             let dir = crash_dir(self.target);
             std::fs::create_dir_all(&dir).unwrap();
+            // A new file each time: rewriting one in place makes ext4 flush it when it is closed.
+            let _ = std::fs::remove_file(dir.join("current"));
             std::fs::write(dir.join("current"), input).unwrap();
         }
         let report = self.attempt(input);
