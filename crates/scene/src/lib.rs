@@ -38,6 +38,7 @@
 mod build;
 mod error;
 mod gltf_import;
+mod nesting;
 mod reader;
 
 pub use error::SceneError;
@@ -125,6 +126,13 @@ fn parse_with(
     policy: &ReadPolicy,
     view: Option<&str>,
 ) -> Result<render::scene::Scene, SceneError> {
+    if let Some(offset) = nesting::too_deep(text) {
+        let message = format!(
+            "invalid TOML: brackets nested more than {} levels deep (no scene needs as many)",
+            nesting::MAX_NESTING
+        );
+        return Err(SceneError::at(origin, text, offset, None, message));
+    }
     let root = DeTable::parse(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         SceneError::at(origin, text, offset, None, format!("invalid TOML: {}", e.message().trim_end()))
@@ -136,6 +144,9 @@ fn parse_with(
 /// The names of the `[views.NAME]` cameras in the scene text `text`, in file order; empty when
 /// it has none or is not valid TOML (which [`parse`] reports).
 pub fn view_names(text: &str) -> Vec<String> {
+    if nesting::too_deep(text).is_some() {
+        return Vec::new();
+    }
     let Ok(root) = DeTable::parse(text) else {
         return Vec::new();
     };
