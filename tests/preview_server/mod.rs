@@ -68,7 +68,10 @@ impl Preview {
     pub fn start_under(scene: &Path, limits: &str) -> Preview {
         let mut command = Command::new("sh");
         command
-            .args(["-c", &format!("trap '' XFSZ; {limits}\nexec \"$0\" \"$@\"")])
+            // Its messages go to /dev/null: a file size limit also binds the test's own stderr
+            // when that is a log file already past the limit, and a failed write there would end
+            // the preview before it prints its address.
+            .args(["-c", &format!("trap '' XFSZ; {limits}\nexec \"$0\" \"$@\" 2>/dev/null")])
             .arg(env!("CARGO_BIN_EXE_nullpath"))
             .args(["preview", scene.to_str().expect("UTF-8 path"), "--port", "0"]);
         Self::spawn(command)
