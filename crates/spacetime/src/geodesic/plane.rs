@@ -827,9 +827,9 @@ mod tests {
         TraceSettings {
             integrator: Integrator::Adaptive { rtol },
             escape_radius,
-            max_step_fraction: 0.5,
             max_steps: 10_000,
             check_every_step: false,
+            ..TraceSettings::default()
         }
     }
 

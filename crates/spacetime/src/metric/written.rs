@@ -269,11 +269,11 @@ impl MetricFunction for WrittenMetric {
 /// `g_rr ≈ 10⁷`: unscaled, `g_tt` falls under 10⁻¹² of the largest eigenvalue and the metric
 /// would look degenerate where it is only badly scaled.
 fn signature(g: &Matrix4) -> (usize, usize) {
-    let scale = |i: usize| match g[i][i].abs().sqrt() {
+    let scale: [f64; 4] = std::array::from_fn(|i| match g[i][i].abs().sqrt() {
         d if d > 0.0 && d.is_finite() => d,
         _ => 1.0,
-    };
-    let m = nalgebra::Matrix4::from_fn(|i, j| g[i][j] / (scale(i) * scale(j)));
+    });
+    let m = nalgebra::Matrix4::from_fn(|i, j| g[i][j] / (scale[i] * scale[j]));
     let eig = nalgebra::SymmetricEigen::new(m).eigenvalues;
     let big = eig.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     let zero = eig.iter().filter(|v| v.abs() <= 1e-12 * big).count();
