@@ -217,11 +217,14 @@ fn the_video_is_assembled_after_the_frames_by_ffmpeg() {
     use std::os::unix::fs::PermissionsExt;
     let dir = temp_dir("video");
     let scene = orbit_scene(&dir);
-    // A stand-in ffmpeg records how it is called (the real one is covered by tests/cli_animate.rs).
+    // A stand-in ffmpeg records how it is called and writes its last argument, the video, as
+    // ffmpeg does (the real one is covered by tests/cli_animate.rs).
     let (bin, called) = (dir.join("bin"), dir.join("ffmpeg-args.txt"));
     std::fs::create_dir_all(&bin).unwrap();
     let fake = bin.join("ffmpeg");
-    std::fs::write(&fake, format!("#!/bin/sh\necho \"$@\" > '{}'\n", called.display())).unwrap();
+    let script =
+        format!("#!/bin/sh\necho \"$@\" > '{}'\nfor last; do :; done\necho video > \"$last\"\n", called.display());
+    std::fs::write(&fake, script).unwrap();
     std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
     let (frames, video) = (dir.join("frames"), dir.join("orbit.mp4"));
     let (frames_arg, video_arg) = (frames.to_str().unwrap(), video.to_str().unwrap());
@@ -234,9 +237,11 @@ fn the_video_is_assembled_after_the_frames_by_ffmpeg() {
     assert!((1..=4).all(|n| frames.join(format!("frame_{n:05}.png")).exists()), "{}", logs_of(&logs));
     let called =
         std::fs::read_to_string(&called).unwrap_or_else(|e| panic!("ffmpeg was not called ({e}):\n{}", logs_of(&logs)));
-    for expected in ["-framerate 1", "-start_number 1", "frame_%05d.png", "-frames:v 4", video_arg] {
+    for expected in ["-framerate 1", "-start_number 1", "frame_%05d.png", "-frames:v 4", "orbit.mp4"] {
         assert!(called.contains(expected), "{called:?} lacks {expected:?}");
     }
+    // Encoded under a temporary name beside the video, then renamed into place.
+    assert_eq!(std::fs::read_to_string(&video).unwrap(), "video\n", "{}", logs_of(&logs));
     drop(jobs);
     std::fs::remove_dir_all(&dir).unwrap();
 }
