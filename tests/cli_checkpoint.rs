@@ -5,6 +5,9 @@
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 #![cfg(unix)]
 
+mod common;
+
+use common::deadline::{output_within, ANSWER};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -236,19 +239,17 @@ fn merged_parts_are_the_single_render_bit_for_bit() {
 }
 
 #[test]
-fn an_interrupt_is_answered_within_a_second_and_the_previous_image_is_kept() {
+fn an_interrupt_is_answered_at_once_and_the_previous_image_is_kept() {
     let dir = temp_dir("nothing-lost");
     let out = dir.join("image.png");
     assert!(render(&["-o", arg(&out), "--spp", "2"]).status.success());
     let finished = std::fs::read(&out).unwrap();
     let child = start(CORNELL, &["-o", arg(&out), "--spp", "1000000"]);
     std::thread::sleep(Duration::from_millis(1500));
-    let asked = Instant::now();
     signal(&child, "INT");
-    let result = child.wait_with_output().unwrap();
-    let answered = asked.elapsed();
+    // The million samples a pixel would take hours.
+    let result = output_within(child, ANSWER, "the interrupted render");
     assert_eq!(result.status.code(), Some(130), "{}", stderr(&result));
-    assert!(answered < Duration::from_secs(1), "answered after {answered:?}");
     assert_eq!(std::fs::read(&out).unwrap(), finished, "the finished image was replaced");
     assert!(dir.join("image.checkpoint.exr").exists());
     std::fs::remove_dir_all(&dir).unwrap();
@@ -269,13 +270,12 @@ fn a_second_interrupt_quits_at_once() {
     signal(&child, "INT");
     // Well past the 0.1 s within which a second SIGINT is a copy of the first press.
     std::thread::sleep(Duration::from_millis(400));
-    let asked = Instant::now();
     signal(&child, "INT");
-    let result = child.wait_with_output().unwrap();
-    let answered = asked.elapsed();
+    let result = output_within(child, ANSWER, "the render interrupted twice");
     assert_eq!(result.status.code(), Some(130), "{}", stderr(&result));
+    // It quit without finishing the first interrupt's checkpoint.
     assert!(!stderr(&result).contains("--resume"), "the first interrupt's answer finished: {}", stderr(&result));
-    assert!(answered < Duration::from_secs(1), "answered after {answered:?}");
+    assert!(!dir.join("image.checkpoint.exr").exists(), "the checkpoint was written");
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -408,13 +408,17 @@ fn unwritable_paths_and_impossible_sizes_are_refused_before_rendering() {
         (vec!["-o", arg(&good), "--part", "3/2"], "part 3/2"),
     ];
     for (args, needle) in cases {
-        let started = Instant::now();
-        let out = nullpath().args(["render", CORNELL, "--spp", "1000000", "--quiet"]).args(&args).output().unwrap();
+        // Refused up front: the million samples a pixel it would render first take hours.
+        let child = nullpath()
+            .args(["render", CORNELL, "--spp", "1000000", "--quiet"])
+            .args(&args)
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let out = output_within(child, ANSWER, &format!("{args:?}"));
         assert_eq!(out.status.code(), Some(if needle == "part 3/2" { 2 } else { 1 }), "{args:?}: {}", stderr(&out));
         assert!(stderr(&out).contains(needle), "{args:?}: {}", stderr(&out));
         assert!(!stderr(&out).contains("panicked"), "{args:?}");
-        // Refused up front, not after a million samples per pixel.
-        assert!(started.elapsed() < Duration::from_secs(5), "{args:?}");
     }
     assert!(!good.exists());
     std::fs::remove_dir_all(&dir).unwrap();

@@ -1,7 +1,10 @@
-//! Statistics shared by the tests that compare integrators: replicas of a render with seeds 0, 1,
-//! …, and the test that two sets of replicas agree within their measured noise.
+//! What several test binaries share: statistics for the tests that compare integrators (replicas
+//! of a render with seeds 0, 1, …, and the test that two sets of replicas agree within their
+//! measured noise), and [`deadline`] for tests of commands that must answer at once.
 
 #![allow(dead_code)] // Each test binary uses its share.
+
+pub mod deadline;
 
 use render::scene::Scene;
 use render::settings::IntegratorKind;
