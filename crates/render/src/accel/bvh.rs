@@ -32,8 +32,8 @@ use crate::geometry::{Aabb, Ray, Vec3};
 const BUCKETS: usize = 12;
 /// Up to this many primitives a box query asks about each one directly ([`Bvh::any_near`]): the
 /// nodes of a room's walls all enclose the room, so any box inside it overlaps every node and
-/// walking the tree only adds the nodes' tests (8.4 % of the instructions of a render of the
-/// black-hole room, whose curved steps and connections make a box or triangle query each).
+/// walking the tree only adds the nodes' tests, on every curved step and connection of a render
+/// (each makes a box or triangle query).
 const DIRECT_BOX_QUERY: usize = 16;
 /// Most primitives in one leaf.
 const MAX_LEAF: usize = 8;

@@ -57,10 +57,9 @@ const LONG_WAY_FALLOFF: f64 = 2.0;
 /// from `x`, whose two images are alike, hardly for points beside it. Though rarely tried there,
 /// its images are so compressed that its light-sampling density far exceeds BSDF sampling's, and
 /// MIS takes the BSDF-sampled long-way hits (the fireflies of brute force) almost entirely off
-/// them. On the black-hole room (240 × 180, 44 spp, two seed pairs), this left 8 % less noise
-/// than trying the long way for a tenth of all points, at 3 % fewer instructions: 19 % more
-/// efficient (falloffs 1 to 3, scaled 0.5 to 2, were within 5 % of it; never trying the long way
-/// doubles the variance of the image).
+/// them. The falloff trades the long way's cost against the variance it removes; never trying
+/// the long way leaves the BSDF-sampled long-way hits as fireflies (the measurements that chose
+/// it are in `docs/perf-journal.md`, "The long way round the hole").
 pub(super) fn way_probability(way: Way, x: Vec3, y: Vec3) -> f64 {
     match way {
         Way::Short => 1.0,
