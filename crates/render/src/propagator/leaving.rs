@@ -25,7 +25,10 @@ impl Propagator {
                 let ng_local = self.local_normal(region, a.hit.p, a.hit.ng);
                 RayEnd::Hit(Arrival { ng_local, energy, swept: None, ..a })
             }
-            _ => RayEnd::Escaped { region, direction, traversed, energy },
+            // A straight ray either hits or escapes; it is never captured nor fails.
+            RayEnd::Escaped { .. } | RayEnd::Captured | RayEnd::Failed => {
+                RayEnd::Escaped { region, direction, traversed, energy }
+            }
         }
     }
 }
