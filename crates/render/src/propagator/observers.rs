@@ -5,6 +5,7 @@
 //! of backward rays").
 
 use super::Propagator;
+use crate::emission::LocalObservers;
 use crate::geometry::Vec3;
 use spacetime::metric::LocalFrame;
 use spacetime::Region;
@@ -79,6 +80,13 @@ impl Propagator {
             }
             LocalFrame::None => 1.0,
         }
+    }
+}
+
+/// Emitters ask the propagator only for the motion of their matter.
+impl LocalObservers for Propagator {
+    fn orbital_velocity(&self, region: Region, p: Vec3, axis: Vec3, omega: f64) -> Option<Vec3> {
+        Propagator::orbital_velocity(self, region, p, axis, omega)
     }
 }
 
