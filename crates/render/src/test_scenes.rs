@@ -9,6 +9,16 @@ use crate::texture::Texture;
 use crate::transform::Transform;
 use crate::world::{Emission, Object, World};
 
+/// The black-hole room's walls, all facing in (a box 12 × 8 × 16 about the origin).
+pub const ROOM: [[[f64; 3]; 3]; 6] = [
+    [[-6.0, -4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
+    [[-6.0, -4.0, 8.0], [12.0, 0.0, 0.0], [0.0, 0.0, -16.0]],
+    [[-6.0, 4.0, -8.0], [12.0, 0.0, 0.0], [0.0, 0.0, 16.0]],
+    [[-6.0, -4.0, 8.0], [0.0, 0.0, -16.0], [0.0, 8.0, 0.0]],
+    [[6.0, -4.0, -8.0], [0.0, 0.0, 16.0], [0.0, 8.0, 0.0]],
+    [[6.0, -4.0, 8.0], [-12.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
+];
+
 /// A floor and a ceiling lamp round a hole of mass 0.3 at the origin, with a flat board and a
 /// ball in the way of some rays (objects 0 to 3 in that order).
 pub fn floor_lamp_board_ball() -> World {

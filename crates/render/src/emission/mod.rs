@@ -19,7 +19,6 @@ pub use shift::{Shift, Shown};
 
 use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
-use crate::propagator::Propagator;
 use crate::spectrum::{Colour, LiftedIlluminant};
 use spacetime::Region;
 use std::sync::Arc;
@@ -82,6 +81,18 @@ impl EmittedBlackbody {
     }
 }
 
+/// What an emitter asks of the spacetime where it emits: how the local observer there sees
+/// matter move. Emission sees the spacetime through this alone (the propagator answers), so it
+/// depends on nothing of how rays are traced; it is asked once per emission evaluation, never
+/// along a ray.
+pub trait LocalObservers {
+    /// The velocity (units of c, in the local frame at world point `p` of `region`) of matter
+    /// turning rigidly about the world unit vector `axis` through the centre at angular velocity
+    /// `omega` per unit coordinate time; `None` where no local observer exists or the motion is
+    /// not slower than light there.
+    fn orbital_velocity(&self, region: Region, p: Vec3, axis: Vec3, omega: f64) -> Option<Vec3>;
+}
+
 /// Where emitted light is seen from: the emitting point (world, in `region`) and the frequency
 /// ratio `g = ν_seen / ν_local` the receiver sees it with, in its parts.
 #[derive(Clone, Copy)]
@@ -89,8 +100,9 @@ pub struct Seen<'a> {
     pub region: Region,
     pub point: Vec3,
     pub shift: Shift,
-    /// Asked for the motion of moving emitters relative to the local observer.
-    pub propagator: &'a Propagator,
+    /// Asked for the motion of moving emitters relative to the local observer (the renderer's
+    /// propagator, hence the name).
+    pub propagator: &'a dyn LocalObservers,
 }
 
 impl Profile {
@@ -201,17 +213,19 @@ impl Emission {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::settings::Intersection;
-    use spacetime::{Minkowski, Spacetime};
 
-    fn flat() -> Propagator {
-        Propagator::new(Spacetime::Minkowski(Minkowski), 10.0, 1e-6, Intersection::Chord)
+    /// Local observers that see no emitter move (none of these tests' emitters does).
+    struct AtRest;
+
+    impl LocalObservers for AtRest {
+        fn orbital_velocity(&self, _region: Region, _p: Vec3, _axis: Vec3, _omega: f64) -> Option<Vec3> {
+            Some(Vec3::ZERO)
+        }
     }
 
     #[test]
     fn a_spot_emits_its_intensity_in_its_cone_and_its_exitance_integrates() {
-        let propagator = flat();
-        let at = Seen { region: Region::Upper, point: Vec3::ZERO, shift: Shift::NONE, propagator: &propagator };
+        let at = Seen { region: Region::Upper, point: Vec3::ZERO, shift: Shift::NONE, propagator: &AtRest };
         let (inner, outer) = (20f64.to_radians(), 35f64.to_radians());
         let spot = Emission {
             radiance: Radiance::Rgb(Rgb::splat(2.0).into()),
@@ -246,12 +260,11 @@ mod tests {
 
     #[test]
     fn rgb_brightens_as_g_to_the_fourth_and_a_blackbody_turns_hotter() {
-        let propagator = flat();
         let at = |g: f64| Seen {
             region: Region::Upper,
             point: Vec3::ZERO,
             shift: Shift { gravity: g, ..Shift::NONE },
-            propagator: &propagator,
+            propagator: &AtRest,
         };
         let lamp = Emission::uniform(Rgb::new(1.0, 0.5, 0.25), false);
         assert_eq!(lamp.seen::<Rgb>(Vec3::Z, Vec3::Z, &at(2.0), &()), Rgb::new(16.0, 8.0, 4.0));

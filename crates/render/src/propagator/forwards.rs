@@ -9,7 +9,8 @@
 //! backward stepper, and its points and momenta are mapped back to the hole's chart to meet the scene and
 //! be measured by the hole's local observers.
 
-use super::{OwnChart, Propagator, RayEnd, TracedChart};
+use super::four_d::{OwnChart, TracedChart};
+use super::{Propagator, RayEnd};
 use crate::geometry::Vec3;
 use crate::world::World;
 use spacetime::geodesic::State;
