@@ -59,8 +59,8 @@ pub use checkpoint::{
 };
 pub use data::{DataChannel, DataLayer, FirstMet, PixelData, SpectrumChannels};
 pub use filter::{
-    BlackmanHarrisFilter, BoxFilter, Filter, FilterError, FilterSample, GaussianFilter, MitchellFilter, TentFilter,
-    MAX_FILTER_RADIUS, MITCHELL_RECOMMENDED_B_C,
+    BlackmanHarrisFilter, BoxFilter, Filter, FilterError, FilterKind, FilterSample, GaussianFilter, MitchellFilter,
+    TentFilter, FILTERS, MAX_FILTER_RADIUS, MITCHELL_RECOMMENDED_B_C,
 };
 pub use output::{
     check_output_path, check_writable, read_metadata, write_data_image, write_file_atomically, write_image,

@@ -158,20 +158,47 @@ impl<'a> Node<'a> {
     /// A table with a `type` key choosing among `kinds` (name, accepted keys besides `type`).
     /// Returns the index of the kind and the table.
     pub fn tagged(&self, what: &str, kinds: &[(&'static str, &[&'static str])]) -> Result<(usize, Table<'a>)> {
-        let table = self.any_table()?;
         let names: Vec<&str> = kinds.iter().map(|k| k.0).collect();
+        self.tagged_by(what, &names, |index| kinds[index].1.to_vec())
+    }
+
+    /// A table with a `type` key naming one of `kinds`: that kind, and the table, which accepts
+    /// `type` and the kind's [`Tagged::keys`]. An unknown or missing type is an error listing
+    /// the kinds' names.
+    pub fn kind<'k, K: Tagged>(&self, what: &str, kinds: &'k [K]) -> Result<(&'k K, Table<'a>)> {
+        let names: Vec<&str> = kinds.iter().map(Tagged::name).collect();
+        let (index, table) = self.tagged_by(what, &names, |index| kinds[index].keys())?;
+        Ok((&kinds[index], table))
+    }
+
+    /// [`Node::tagged`] and [`Node::kind`]: the index into `names` of the `type`, and the table
+    /// accepting `type` and `keys(index)`.
+    fn tagged_by(
+        &self,
+        what: &str,
+        names: &[&str],
+        keys: impl FnOnce(usize) -> Vec<&'static str>,
+    ) -> Result<(usize, Table<'a>)> {
+        let table = self.any_table()?;
         let Some(type_node) = table.find("type") else {
             return Err(table.node.doc.error(
                 self.span.start,
                 &join(&self.path, "type"),
-                format!("required field is missing: the {what} type, one of {}", one_of(&names)),
+                format!("required field is missing: the {what} type, one of {}", one_of(names)),
             ));
         };
-        let index = type_node.keyword(what, &names)?;
+        let index = type_node.keyword(what, names)?;
         let mut allowed = vec!["type"];
-        allowed.extend_from_slice(kinds[index].1);
+        allowed.extend(keys(index));
         table.only(&allowed)?;
         Ok((index, Table { allowed, ..table }))
+    }
+
+    /// A string naming one of `options` (name, value): its value. An unknown name is an error
+    /// listing the names, as [`Node::keyword`]'s.
+    pub fn choice<T: Copy>(&self, what: &str, options: &[(&str, T)]) -> Result<T> {
+        let names: Vec<&str> = options.iter().map(|o| o.0).collect();
+        Ok(options[self.keyword(what, &names)?].1)
     }
 
     /// A string that must be one of `options`; returns its index.
@@ -318,6 +345,34 @@ impl<'a> Node<'a> {
         } else {
             Err(self.err(format!("colour {} is too large", fmt_rgb(c))))
         }
+    }
+}
+
+/// A kind of table chosen by its `type` key (a shape, a material, a sky, …): the name `type`
+/// gives, and the keys it accepts besides `type`. See [`Node::kind`].
+pub(crate) trait Tagged {
+    fn name(&self) -> &'static str;
+    fn keys(&self) -> Vec<&'static str>;
+}
+
+/// One named kind of the builder's tables: the `type` that names it, the keys it accepts
+/// besides `type`, and `build`, the function that reads those keys and builds it. The three sit
+/// in one entry so that no name can be listed without its keys and its builder: a table of
+/// these is the only place a kind is known by name, and there is no fallback to build a name
+/// that has no entry.
+pub(crate) struct Kind<B> {
+    pub name: &'static str,
+    pub keys: &'static [&'static str],
+    pub build: B,
+}
+
+impl<B> Tagged for Kind<B> {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn keys(&self) -> Vec<&'static str> {
+        self.keys.to_vec()
     }
 }
 

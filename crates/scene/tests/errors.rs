@@ -70,7 +70,105 @@ fn unknown_fields_are_named_with_the_expected_ones() {
 #[test]
 fn unknown_shape_type() {
     let text = object("{ type = \"sphear\", center = [0, 0, 0], radius = 1 }", "");
-    check(&text, 6, "objects[0].shape.type", &["unknown shape \"sphear\"", "did you mean \"sphere\"", "\"mesh\""]);
+    check(
+        &text,
+        6,
+        "objects[0].shape.type",
+        &[
+            "unknown shape \"sphear\" (did you mean \"sphere\"?); expected \"sphere\", \"plane\", \"rectangle\", \"disk\", \
+             \"box\", \"cylinder\" or \"mesh\"",
+        ],
+    );
+    // A table without its type lists the types too.
+    check(&object("{ radius = 1 }", ""), 6, "objects[0].shape.type", &["required field is missing", "\"cylinder\""]);
+}
+
+#[test]
+fn unknown_material_type() {
+    let text = format!("{CAMERA}[materials.m]\ntype = \"difuse\"\n");
+    check(
+        &text,
+        6,
+        "materials.m.type",
+        &["unknown material \"difuse\" (did you mean \"diffuse\"?); expected \"diffuse\", \"mirror\", \"dielectric\", \
+           \"conductor\" or \"plastic\""],
+    );
+}
+
+#[test]
+fn unknown_texture_type() {
+    let text = format!("{CAMERA}[materials.m]\ntype = \"diffuse\"\nreflectance = {{ type = \"marble\" }}\n");
+    check(
+        &text,
+        7,
+        "materials.m.reflectance.type",
+        &["unknown texture \"marble\"; expected \"checker\", \"grid\", \"image\" or \"earth\""],
+    );
+}
+
+#[test]
+fn unknown_sky_type() {
+    let text = format!("{CAMERA}[sky]\ntype = \"star\"\n");
+    check(
+        &text,
+        6,
+        "sky.type",
+        &["unknown sky \"star\" (did you mean \"stars\"?); expected \"constant\", \"gradient\", \"equirect\", \
+           \"stars\" or \"grid\""],
+    );
+}
+
+#[test]
+fn unknown_filter_type() {
+    let names = "expected \"box\", \"tent\", \"gaussian\", \"mitchell\" or \"blackman-harris\"";
+    let text = format!("{CAMERA}[render]\nfilter = \"mitchel\"\n");
+    check(&text, 6, "render.filter", &["unknown filter \"mitchel\" (did you mean \"mitchell\"?)", names]);
+    let text = format!("{CAMERA}[render]\nfilter = {{ type = \"lanczos\", radius = 2 }}\n");
+    check(&text, 6, "render.filter.type", &["unknown filter \"lanczos\"", names]);
+    // Each filter takes its own parameters only.
+    let text = format!("{CAMERA}[render]\nfilter = {{ type = \"gaussian\", b = 0.3 }}\n");
+    check(&text, 6, "render.filter.b", &["unknown field \"b\"; expected \"type\", \"radius\" or \"sigma\""]);
+}
+
+#[test]
+fn unknown_projection() {
+    let text = "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nprojection = \"fishey\"\n";
+    check(
+        text,
+        4,
+        "camera.projection",
+        &["unknown projection \"fishey\" (did you mean \"fisheye\"?); expected \"perspective\", \"equirectangular\", \
+           \"fisheye\" or \"ods\""],
+    );
+}
+
+#[test]
+fn unknown_integrator_and_render_keywords() {
+    let render = |line: &str| format!("{CAMERA}[render]\n{line}\n");
+    check(
+        &render("integrator = \"bdpt\""),
+        6,
+        "render.integrator",
+        &["unknown integrator \"bdpt\"; expected \"path\", \"brute-force\" or \"photon\""],
+    );
+    check(
+        &render("intersection = \"chords\""),
+        6,
+        "render.intersection",
+        &["unknown intersection \"chords\" (did you mean \"chord\"?); expected \"chord\" or \"poster\""],
+    );
+    check(
+        &render("tonemap = \"aces\""),
+        6,
+        "render.tonemap",
+        &["unknown tone map \"aces\"; expected \"filmic\" or \"linear\""],
+    );
+    check(
+        &render("connector = \"aim\""),
+        6,
+        "render.connector",
+        &["unknown connector \"aim\"", "\"auto\" or \"aimed\""],
+    );
 }
 
 #[test]

@@ -6,9 +6,10 @@ use common::{scenes_dir, temp_dir, CAMERA, TINY_PNG};
 use render::camera::{Equirectangular, Fisheye, Ods, Projection};
 use render::color::Rgb;
 use render::film::{Curve, Filter};
+use render::geometry::Vec3;
 use render::material::{ConductorFresnel, Material};
 use render::settings::{IntegratorKind, Intersection};
-use render::sky::Sky;
+use render::sky::{Sky, SkyFrame, StarFieldParams};
 use render::texture::Texture;
 use spacetime::{Region, Spacetime};
 use std::path::Path;
@@ -284,15 +285,58 @@ transform = {{ translate = [0, 0, -1] }}
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// Each sky type builds its own kind of sky, with the parameters the file gives and the
+/// documented defaults for the rest.
 #[test]
-fn all_skies_parse() {
-    for sky in [
-        "type = \"constant\"\nradiance = 0.5",
-        "type = \"gradient\"\nzenith = [0.1, 0.2, 0.9]\nup = [0, 0, 1]",
-        "type = \"stars\"\ndensity = 500\nseed = 3\nbackground = [0.001, 0.001, 0.002]",
-        "type = \"grid\"\nbackground = 0.1\nequator = [1, 0, 1]\nrotation_deg = 30",
-    ] {
-        parse(&format!("{CAMERA}[sky]\n{sky}\n"));
+fn all_skies_are_read_with_their_parameters() {
+    let sky = |body: &str| parse(&format!("{CAMERA}[sky]\n{body}\n")).world.sky(Region::Upper).clone();
+    match sky("type = \"constant\"\nradiance = 0.5") {
+        Sky::Constant(c) => assert_eq!(c, Rgb::splat(0.5)),
+        other => panic!("{other:?}"),
+    }
+    match sky("type = \"gradient\"\nzenith = [0.1, 0.2, 0.9]\nup = [0, 0, 1]") {
+        Sky::Gradient(g) => {
+            assert_eq!(g.zenith, Rgb::new(0.1, 0.2, 0.9));
+            assert_eq!((g.horizon, g.nadir), (Rgb::new(0.9, 0.9, 1.0), Rgb::new(0.9, 0.9, 1.0)));
+            assert_eq!(g.frame, SkyFrame::new(Vec3::Z, 0.0).unwrap());
+        }
+        other => panic!("{other:?}"),
+    }
+    match sky("type = \"gradient\"\nhorizon = 0.2\nnadir = [0, 0, 0.1]") {
+        Sky::Gradient(g) => {
+            assert_eq!(
+                (g.horizon, g.zenith, g.nadir),
+                (Rgb::splat(0.2), Rgb::new(0.3, 0.5, 0.9), Rgb::new(0.0, 0.0, 0.1))
+            );
+            assert_eq!(g.frame, SkyFrame::Y_UP);
+        }
+        other => panic!("{other:?}"),
+    }
+    match sky("type = \"stars\"\ndensity = 500\nseed = 3\nbackground = [0.001, 0.001, 0.002]\nstar_radius_deg = 0.1") {
+        Sky::StarField(s) => {
+            let p = s.params();
+            assert_eq!((p.density, p.seed, p.star_radius_deg), (500.0, 3, 0.1));
+            assert_eq!(p.background, Rgb::new(0.001, 0.001, 0.002));
+            assert_eq!(p.brightness, StarFieldParams::default().brightness);
+        }
+        other => panic!("{other:?}"),
+    }
+    match sky("type = \"grid\"\nbackground = 0.1\nequator = [1, 0, 1]\nrotation_deg = 30\nspacing_deg = 15") {
+        Sky::Grid(g) => {
+            assert_eq!(g.background, [Rgb::splat(0.1); 4]);
+            assert_eq!((g.equator, g.prime_meridian), (Some(Rgb::new(1.0, 0.0, 1.0)), None));
+            assert_eq!((g.line, g.spacing_deg, g.width_deg), (Rgb::splat(0.9), 15.0, 0.3));
+            assert_eq!(g.frame, SkyFrame::new(Vec3::Y, 30.0).unwrap());
+        }
+        other => panic!("{other:?}"),
+    }
+    match sky("type = \"grid\"\nbackground = [[1, 0, 0], [0, 1, 0], [0, 0, 1], 0.5]\nup = [1, 0, 0]\nline = 2") {
+        Sky::Grid(g) => {
+            assert_eq!(g.background, [Rgb::X, Rgb::Y, Rgb::Z, Rgb::splat(0.5)]);
+            assert_eq!(g.line, Rgb::splat(2.0));
+            assert_eq!(g.frame, SkyFrame::new(Vec3::X, 0.0).unwrap());
+        }
+        other => panic!("{other:?}"),
     }
 }
 
@@ -396,4 +440,183 @@ fn projections_are_chosen_by_name_with_their_defaults() {
     assert_eq!(rig.projection, Projection::Ods(Ods::new(0.064).unwrap()));
     let keyed = "[camera]\nprojection = \"equirectangular\"\n[[camera.keyframes]]\ntime = 0\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n";
     assert_eq!(parse(keyed).camera.projection, Projection::Equirectangular(Equirectangular));
+}
+
+/// The names a builder's table knows, read from its error for an unknown name
+/// (`…; expected "a", "b" or "c"`).
+fn known_names(text: &str) -> Vec<String> {
+    let message = scene::parse(text, "t.toml", Path::new(".")).map(|_| ()).expect_err("an unknown name").to_string();
+    let (_, list) = message.split_once("; expected ").unwrap_or_else(|| panic!("{message}"));
+    list.replace(" or ", ", ").split(", ").map(|n| n.trim_matches('"').to_string()).collect()
+}
+
+/// A documented default as a TOML value: the text without its backticks, a fraction `a/b`
+/// written as the number it is; `None` for prose ("— (required)", "as `line`").
+fn toml_value(text: &str) -> Option<String> {
+    let text = text.trim().trim_matches('`').trim();
+    let value = match text.split_once('/') {
+        Some((a, b)) => format!("{:?}", a.trim().parse::<f64>().ok()? / b.trim().parse::<f64>().ok()?),
+        None => text.to_string(),
+    };
+    toml::from_str::<toml::Table>(&format!("v = {value}")).ok().map(|_| value)
+}
+
+/// The `key` (default, …) pairs of a "parameters (defaults)" cell: a key in backticks directly
+/// followed (past words, not past another key) by a parenthesis whose first item is the default.
+fn documented_parameters(cell: &str) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    let pieces: Vec<&str> = cell.split('`').collect();
+    // Odd pieces are inside backticks; a key is one followed by text with a parenthesis.
+    let mut i = 1;
+    while i + 1 < pieces.len() {
+        let (key, after) = (pieces[i], pieces[i + 1]);
+        i += 2;
+        let Some(open) = after.find('(') else { continue };
+        // The parenthesis's content up to its first top-level comma, backticks rejoined.
+        let mut content = after[open + 1..].to_string();
+        let mut j = i;
+        while !content.contains(')') && j < pieces.len() {
+            content.push('`');
+            content.push_str(pieces[j]);
+            j += 1;
+        }
+        let mut depth = 0;
+        let end = content
+            .char_indices()
+            .find(|&(_, c)| {
+                depth += i32::from(c == '[') - i32::from(c == ']');
+                depth == 0 && (c == ',' || c == ')')
+            })
+            .map_or(content.len(), |(k, _)| k);
+        if let Some(value) = toml_value(&content[..end]) {
+            out.push((key.to_string(), value));
+        }
+    }
+    out
+}
+
+/// Every default docs/scene-format.md gives for a filter, material, texture, sky, camera
+/// (projection) or `[render]` key (integrator, …) is the builder's: the scene without the key and
+/// the scene with the key set to the documented value build the same thing. And the tables of
+/// filters, materials, textures and skies list exactly the types the builder knows.
+#[test]
+fn documented_defaults_are_the_builders() {
+    let dir = temp_dir("defaults");
+    std::fs::write(dir.join("tex.png"), TINY_PNG).unwrap();
+    let build = |text: &str, what: &dyn Fn(&render::scene::Scene) -> String| {
+        scene::parse(text, "defaults.toml", &dir).map(|s| what(&s)).unwrap_or_else(|e| panic!("{e}\nin:\n{text}"))
+    };
+    let filter = |s: &render::scene::Scene| format!("{:?}", s.settings.filter);
+    let material = |s: &render::scene::Scene| format!("{:?}", s.world.materials[0]);
+    let sky = |s: &render::scene::Scene| format!("{:?}", s.world.sky(Region::Upper));
+    let camera = |s: &render::scene::Scene| format!("{:?} {:?}", s.camera, s.animation);
+    let settings = |s: &render::scene::Scene| format!("{:?}", s.settings);
+    // The scene of a kind's table (`{}` where the key goes) and what to compare of it.
+    type Extract = dyn Fn(&render::scene::Scene) -> String;
+    let scene_of = |section: &str, name: &str, key: &str| -> Option<(String, &Extract)> {
+        Some(match section {
+            "Filters" => (format!("{CAMERA}[render]\nfilter = {{ type = \"{name}\" {{}} }}\n"), &filter as &Extract),
+            "Materials" => (format!("{CAMERA}[materials.m]\ntype = \"{name}\"\n{{}}\n"), &material),
+            "Textures" => {
+                let file = if name == "image" { "file = \"tex.png\"\n" } else { "" };
+                let body = format!("type = \"diffuse\"\n[materials.m.reflectance]\ntype = \"{name}\"\n{file}");
+                (format!("{CAMERA}[materials.m]\n{body}{{}}\n"), &material)
+            }
+            "sky" => {
+                let file = if name == "equirect" { "file = \"tex.png\"\n" } else { "" };
+                (format!("{CAMERA}[sky]\ntype = \"{name}\"\n{file}{{}}\n"), &sky)
+            }
+            "`[camera]`" => {
+                let projection = match key {
+                    "fisheye_fov" => "projection = \"fisheye\"\n",
+                    "ipd" => "projection = \"ods\"\n",
+                    _ => "",
+                };
+                (format!("[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n{projection}{{}}\n"), &camera)
+            }
+            "`[render]`" => {
+                let poster = if key.starts_with("poster_") { "intersection = \"poster\"\n" } else { "" };
+                (format!("{CAMERA}[render]\n{poster}{{}}\n"), &settings)
+            }
+            _ => return None,
+        })
+    };
+    let doc = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md"))
+        .expect("docs/scene-format.md");
+    let (mut section, mut sky_type) = (String::new(), String::new());
+    let mut documented: std::collections::BTreeMap<&str, Vec<String>> = Default::default();
+    let mut checked = Vec::new();
+    for line in doc.lines() {
+        if let Some(heading) = line.strip_prefix('#') {
+            section = heading.trim_start_matches('#').trim().to_string();
+            if let Some(name) = section.strip_prefix("`type = \"").and_then(|s| s.strip_suffix("\"`")) {
+                documented.entry("sky").or_default().push(name.to_string());
+                (sky_type, section) = (name.to_string(), "sky".to_string());
+            }
+            continue;
+        }
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        if cells.len() < 4 || cells[1].starts_with('-') || ["key", "`type`"].contains(&cells[1]) {
+            continue;
+        }
+        // Tables of types ("parameters (defaults)") and tables of keys (key | type | default).
+        let (name, pairs) = match section.as_str() {
+            "Filters" | "Materials" | "Textures" => {
+                (cells[1].trim_matches('`').trim_matches('"').to_string(), documented_parameters(cells[2]))
+            }
+            "sky" | "`[camera]`" | "`[render]`" => {
+                let name = if section == "sky" { sky_type.clone() } else { String::new() };
+                let key = cells[1].trim_matches('`').to_string();
+                (name, toml_value(cells[3]).map(|v| (key, v)).into_iter().collect())
+            }
+            _ => continue,
+        };
+        if let Some(list) = match section.as_str() {
+            "Filters" => Some("filter"),
+            "Materials" => Some("material"),
+            "Textures" => Some("texture"),
+            _ => None,
+        } {
+            documented.entry(list).or_default().push(name.clone());
+        }
+        for (key, value) in pairs {
+            let Some((text, extract)) = scene_of(&section, &name, &key) else { continue };
+            let without = build(&text.replace("{}", ""), extract);
+            // A filter's keys are inline-table fields; every other kind's, lines of its table.
+            let set = if section == "Filters" { format!(", {key} = {value}") } else { format!("{key} = {value}") };
+            let with = build(&text.replace("{}", &set), extract);
+            assert_eq!(without, with, "{section} {name}: documented default {key} = {value} is not the builder's");
+            checked.push((section.clone(), name.clone(), key));
+        }
+    }
+    for (section, name, key) in [
+        ("Filters", "gaussian", "sigma"),
+        ("Filters", "mitchell", "b"),
+        ("Filters", "blackman-harris", "radius"),
+        ("Materials", "conductor", "metal"),
+        ("Materials", "plastic", "ior"),
+        ("Textures", "checker", "uv_scale"),
+        ("Textures", "earth", "clouds"),
+        ("sky", "stars", "brightness"),
+        ("sky", "grid", "width_deg"),
+        ("sky", "equirect", "intensity"),
+        ("`[camera]`", "", "fisheye_fov"),
+        ("`[camera]`", "", "ipd"),
+        ("`[render]`", "", "integrator"),
+        ("`[render]`", "", "poster_max_iterations"),
+    ] {
+        let must = (section.to_string(), name.to_string(), key.to_string());
+        assert!(checked.contains(&must), "{must:?} not checked; checked: {checked:#?}");
+    }
+    // The tables list exactly the types the builder knows, in its order.
+    let known = [
+        ("filter", format!("{CAMERA}[render]\nfilter = \"?\"\n")),
+        ("material", format!("{CAMERA}[materials.m]\ntype = \"?\"\n")),
+        ("texture", format!("{CAMERA}[materials.m]\ntype = \"diffuse\"\nreflectance = {{ type = \"?\" }}\n")),
+        ("sky", format!("{CAMERA}[sky]\ntype = \"?\"\n")),
+    ];
+    for (what, text) in known {
+        assert_eq!(documented.get(what), Some(&known_names(&text)), "the {what} types documented");
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -125,6 +125,17 @@ impl Filter {
         BlackmanHarrisFilter::new(radius).map(Self::BlackmanHarris)
     }
 
+    /// Its name in scene files, as [`FILTERS`] gives it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Box(_) => "box",
+            Self::Tent(_) => "tent",
+            Self::Gaussian(_) => "gaussian",
+            Self::Mitchell(_) => "mitchell",
+            Self::BlackmanHarris(_) => "blackman-harris",
+        }
+    }
+
     /// Half-width of the support along x and y, in pixels.
     pub fn radius(&self) -> [f64; 2] {
         match self {
@@ -159,6 +170,65 @@ impl Filter {
             Self::Mitchell(f) => f.sampler.sample(u),
             Self::BlackmanHarris(f) => f.sampler.sample(u),
         }
+    }
+}
+
+/// One kind of filter as scene files name it: its name, its default radius, its shape parameters
+/// with their defaults, and its constructor, side by side so that no name can be listed without
+/// the constructor it stands for (nor a radius apart from its filter).
+#[derive(Debug)]
+pub struct FilterKind {
+    /// The name scene files give it (`filter = "mitchell"`).
+    pub name: &'static str,
+    /// Radius in pixels along both axes when none is given.
+    pub default_radius: f64,
+    /// The shape parameters besides the radius, each with its default, in the order
+    /// [`FilterKind::build`] takes their values.
+    pub parameters: &'static [(&'static str, f64)],
+    /// The constructor; `values` has one value per entry of `parameters` (checked by `build`).
+    constructor: fn(radius: [f64; 2], values: &[f64]) -> Result<Filter, FilterError>,
+}
+
+/// Every filter, in the order scene files' messages list them. Default radii are pbrt-v4's
+/// (Blackman–Harris, which pbrt-v4 lacks, as its Gaussian).
+pub const FILTERS: &[FilterKind] = &[
+    FilterKind { name: "box", default_radius: 0.5, parameters: &[], constructor: |r, _| Filter::box_filter(r) },
+    FilterKind { name: "tent", default_radius: 2.0, parameters: &[], constructor: |r, _| Filter::tent(r) },
+    FilterKind {
+        name: "gaussian",
+        default_radius: 1.5,
+        parameters: &[("sigma", 0.5)],
+        constructor: |r, v| Filter::gaussian(r, v[0]),
+    },
+    FilterKind {
+        name: "mitchell",
+        default_radius: 2.0,
+        parameters: &[("b", MITCHELL_RECOMMENDED_B_C), ("c", MITCHELL_RECOMMENDED_B_C)],
+        constructor: |r, v| Filter::mitchell(r, v[0], v[1]),
+    },
+    FilterKind {
+        name: "blackman-harris",
+        default_radius: 1.5,
+        parameters: &[],
+        constructor: |r, _| Filter::blackman_harris(r),
+    },
+];
+
+impl FilterKind {
+    /// This filter with `radius` and `values`, one per entry of [`FilterKind::parameters`] and in
+    /// their order.
+    ///
+    /// # Panics
+    /// If `values` does not have one value per parameter: the caller's mistake, not its input's.
+    pub fn build(&self, radius: [f64; 2], values: &[f64]) -> Result<Filter, FilterError> {
+        assert_eq!(values.len(), self.parameters.len(), "the {} filter takes {:?}", self.name, self.parameters);
+        (self.constructor)(radius, values)
+    }
+
+    /// This filter with its default radius and parameters.
+    pub fn build_default(&self) -> Result<Filter, FilterError> {
+        let values: Vec<f64> = self.parameters.iter().map(|p| p.1).collect();
+        self.build([self.default_radius; 2], &values)
     }
 }
 
@@ -564,13 +634,105 @@ mod tests {
     }
 
     #[test]
-    fn sampling_is_deterministic_and_clamps_out_of_range_input() {
-        let filter = Filter::mitchell([2.0, 2.0], 1.0 / 3.0, 1.0 / 3.0).expect("valid");
-        assert_eq!(filter.sample([0.3, 0.7]), filter.sample([0.3, 0.7]));
-        for u in [[1.0, 1.0], [-0.5, 2.0], [f64::NAN, 0.5]] {
-            let s = filter.sample(u);
-            assert!(s.offset.iter().all(|o| o.abs() <= 2.0) && s.weight.is_finite());
+    fn sampling_is_monotone_and_clamps_out_of_range_input() {
+        const ONE_MINUS_EPSILON: f64 = 1.0 - f64::EPSILON / 2.0;
+        for kind in FILTERS {
+            let filter = kind.build_default().expect("defaults are valid");
+            let r = filter.radius();
+            // Out-of-range input is the nearest point of [0, 1)²; NaN is 0.
+            for (u, clamped) in [
+                ([1.0, 1.0], [ONE_MINUS_EPSILON, ONE_MINUS_EPSILON]),
+                ([-0.5, 2.0], [0.0, ONE_MINUS_EPSILON]),
+                ([f64::NAN, 0.5], [0.0, 0.5]),
+            ] {
+                let s = filter.sample(u);
+                assert_eq!(s, filter.sample(clamped), "{}: u = {u:?}", kind.name);
+                assert!(s.offset[0].abs() <= r[0] && s.offset[1].abs() <= r[1] && s.weight.is_finite());
+            }
+            // Monotone in each component, from one end of the support to the other: stratified
+            // patterns stay stratified.
+            for axis in 0..2 {
+                let offsets: Vec<f64> = (0..=256)
+                    .map(|k| {
+                        let mut u = [0.37, 0.61];
+                        u[axis] = f64::from(k) / 256.0;
+                        filter.sample(u).offset[axis]
+                    })
+                    .collect();
+                assert!(offsets.windows(2).all(|w| w[0] <= w[1]), "{}: not monotone along {axis}", kind.name);
+                assert!(offsets[0] < -0.5 * r[axis] && offsets[256] > 0.5 * r[axis], "{}: {offsets:?}", kind.name);
+            }
         }
+        // A filter rebuilt from the same parameters draws the same offsets (its tables are a
+        // function of the parameters alone).
+        let a = Filter::mitchell([2.0, 1.5], 0.3, 0.4).expect("valid");
+        let b = Filter::mitchell([2.0, 1.5], 0.3, 0.4).expect("valid");
+        let mut rng = Rng::new(7);
+        for _ in 0..1000 {
+            let u = rng.next_2d();
+            assert_eq!(a.sample(u), b.sample(u));
+        }
+    }
+
+    #[test]
+    fn filters_take_their_formulas_values_and_vanish_outside_their_support() {
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-14 * b.abs().max(1.0);
+        let boxed = Filter::box_filter([0.5, 1.5]).expect("valid");
+        assert_eq!(boxed.evaluate([0.5, -1.5]), 1.0);
+        assert_eq!(boxed.evaluate([0.51, 0.0]), 0.0);
+        let tent = Filter::tent([2.0, 1.0]).expect("valid");
+        assert!(close(tent.evaluate([0.5, -0.25]), 1.5 * 0.75));
+        // σ = 0.5, r = 1.5: each factor is g(x) − g(1.5), g the normal density.
+        let gaussian = Filter::gaussian([1.5, 1.5], 0.5).expect("valid");
+        let g = |x: f64| (-x * x / 0.5).exp() / ((2.0 * PI).sqrt() * 0.5);
+        assert!(close(gaussian.evaluate([0.0, 0.0]), (g(0.0) - g(1.5)).powi(2)));
+        assert!(close(gaussian.evaluate([0.7, -0.2]), (g(0.7) - g(1.5)) * (g(0.2) - g(1.5))));
+        // Mitchell with B = C = 1/3 at the centre: ((6 − 2B)/6)² = (8/9)²; at x = r/2 (m(1) = B/6).
+        let third = MITCHELL_RECOMMENDED_B_C;
+        let mitchell = Filter::mitchell([2.0, 2.0], third, third).expect("valid");
+        assert!(close(mitchell.evaluate([0.0, 0.0]), (8.0f64 / 9.0).powi(2)));
+        assert!(close(mitchell.evaluate([1.0, 0.0]), third / 6.0 * (8.0 / 9.0)));
+        let window = Filter::blackman_harris([1.5, 0.75]).expect("valid");
+        assert!(close(window.evaluate([0.0, 0.0]), 1.0));
+        assert!(close(window.evaluate([0.75, 0.0]), 0.35875 - 0.14128));
+        // Zero just outside the support along each axis, for every filter.
+        for filter in [boxed, tent, gaussian, mitchell, window] {
+            let [rx, ry] = filter.radius();
+            for p in [[rx * 1.001, 0.0], [0.0, -ry * 1.001], [-rx * 1.5, ry * 1.5]] {
+                assert_eq!(filter.evaluate(p), 0.0, "{filter:?} at {p:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn every_filter_kind_builds_its_own_filter_with_its_defaults() {
+        let names: Vec<&str> = FILTERS.iter().map(|k| k.name).collect();
+        assert_eq!(names, ["box", "tent", "gaussian", "mitchell", "blackman-harris"]);
+        for kind in FILTERS {
+            let filter = kind.build_default().expect("defaults are valid");
+            assert_eq!(filter.name(), kind.name);
+            assert_eq!(filter.radius(), [kind.default_radius; 2]);
+            let values: Vec<f64> = kind.parameters.iter().map(|p| p.1).collect();
+            let other = kind.build([1.0, 0.75], &values).expect("valid");
+            assert_eq!((other.name(), other.radius()), (kind.name, [1.0, 0.75]));
+        }
+        // The parameters reach the filter in their order.
+        match FILTERS[3].build([2.0, 2.0], &[0.25, 0.5]) {
+            Ok(Filter::Mitchell(m)) => assert_eq!((m.b(), m.c()), (0.25, 0.5)),
+            other => panic!("{other:?}"),
+        }
+        match FILTERS[2].build([2.0, 2.0], &[0.7]) {
+            Ok(Filter::Gaussian(g)) => assert_eq!(g.sigma(), 0.7),
+            other => panic!("{other:?}"),
+        }
+        // The default filter is the box's defaults.
+        assert_eq!(Filter::default().radius(), [FILTERS[0].default_radius; 2]);
+    }
+
+    #[test]
+    #[should_panic(expected = "the mitchell filter takes")]
+    fn a_filter_kind_refuses_the_wrong_number_of_parameters() {
+        let _ = FILTERS[3].build([2.0, 2.0], &[0.3]);
     }
 
     #[test]

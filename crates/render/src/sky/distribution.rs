@@ -8,8 +8,11 @@
 //!
 //! A photon's power divides by the density of its direction, so any density that is positive where
 //! the sky is bright gives an unbiased estimate; these make photon powers nearly equal.
+//!
+//! A [`SkyDistribution`] carries the sky it was built from, in the variant of that sky's kind: a
+//! distribution cannot be used with another sky, nor a sky with another kind's distribution.
 
-use super::{EquirectDistribution, Sky, StarDistribution};
+use super::{EquirectDistribution, Gradient, LatLongGrid, Sky, StarDistribution};
 use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
 use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
@@ -18,13 +21,18 @@ use std::f64::consts::PI;
 /// Latitude × longitude cells of the quadrature that estimates a smooth sky's power.
 const POWER_QUADRATURE: (usize, usize) = (64, 128);
 
-/// How to draw directions from one sky.
+/// How to draw directions from one sky, with that sky: one variant per kind of [`Sky`].
 #[derive(Clone, Debug)]
 pub enum SkyDistribution {
-    Uniform {
-        power: f64,
-    },
+    /// [`Sky::Constant`]: uniformly over the sphere, which is exactly in proportion.
+    Constant { radiance: Rgb, power: f64 },
+    /// [`Sky::Gradient`]: uniformly over the sphere.
+    Gradient { sky: Gradient, power: f64 },
+    /// [`Sky::Grid`]: uniformly over the sphere.
+    Grid { sky: LatLongGrid, power: f64 },
+    /// [`Sky::Equirect`]: piecewise constant over the panorama's pixels.
     Image(EquirectDistribution),
+    /// [`Sky::StarField`]: the stars by flux, the background uniformly.
     Stars {
         stars: StarDistribution,
         /// Probability of drawing from the background rather than from the stars.
@@ -42,7 +50,8 @@ pub struct SkySample {
 }
 
 impl SkyDistribution {
-    /// The distribution for `sky`, built once per render.
+    /// The distribution for `sky`, built once per render; it keeps a copy of the sky (sharing a
+    /// panorama's image).
     pub fn new(sky: &Sky) -> Self {
         match sky {
             Sky::Equirect(e) => Self::Image(e.distribution()),
@@ -53,8 +62,9 @@ impl SkyDistribution {
                 let background = if power > 0.0 { background / power } else { 1.0 };
                 Self::Stars { stars, background, power }
             }
-            Sky::Constant(c) => Self::Uniform { power: 4.0 * PI * f64::from(luminance(*c)) },
-            Sky::Gradient(_) | Sky::Grid(_) => Self::Uniform { power: quadrature_power(sky) },
+            Sky::Constant(c) => Self::Constant { radiance: *c, power: 4.0 * PI * f64::from(luminance(*c)) },
+            Sky::Gradient(g) => Self::Gradient { sky: *g, power: quadrature_power(|d| g.radiance(d)) },
+            Sky::Grid(g) => Self::Grid { sky: *g, power: quadrature_power(|d| g.radiance(d)) },
         }
     }
 
@@ -63,38 +73,55 @@ impl SkyDistribution {
     /// exact). 0 for a black sky, which emits nothing.
     pub fn power(&self) -> f64 {
         match self {
-            Self::Uniform { power } | Self::Stars { power, .. } => *power,
+            Self::Constant { power, .. }
+            | Self::Gradient { power, .. }
+            | Self::Grid { power, .. }
+            | Self::Stars { power, .. } => *power,
             Self::Image(d) => d.power(),
         }
     }
 
+    /// The radiance of the sky in `direction` (as [`Sky::radiance`]).
+    pub fn radiance(&self, direction: Vec3) -> Rgb {
+        match self {
+            Self::Constant { radiance, .. } => *radiance,
+            Self::Gradient { sky, .. } => sky.radiance(direction),
+            Self::Grid { sky, .. } => sky.radiance(direction),
+            Self::Image(d) => d.sky().radiance(direction),
+            Self::Stars { stars, .. } => stars.field().radiance(direction),
+        }
+    }
+
     /// A direction drawn with `u`; `None` where the distribution has nothing there.
-    pub fn sample(&self, sky: &Sky, u: [f64; 3]) -> Option<SkySample> {
-        let direction = match (self, sky) {
-            (Self::Image(d), Sky::Equirect(e)) => d.sample(e, [u[1], u[2]])?.0,
-            (Self::Stars { stars, background, .. }, Sky::StarField(s)) if u[0] >= *background => {
-                stars.sample(s, (u[0] - background) / (1.0 - background), [u[1], u[2]])?
+    pub fn sample(&self, u: [f64; 3]) -> Option<SkySample> {
+        let direction = match self {
+            Self::Image(d) => d.sample([u[1], u[2]])?.0,
+            Self::Stars { stars, background, .. } if u[0] >= *background => {
+                stars.sample((u[0] - background) / (1.0 - background), [u[1], u[2]])?
             }
-            _ => uniform_sphere([u[1], u[2]]),
+            // The background of a star field, and the smooth skies.
+            Self::Stars { .. } | Self::Constant { .. } | Self::Gradient { .. } | Self::Grid { .. } => {
+                uniform_sphere([u[1], u[2]])
+            }
         };
-        let pdf = self.pdf(sky, direction);
-        (pdf > 0.0).then(|| SkySample { direction, radiance: sky.radiance(direction), pdf })
+        let pdf = self.pdf(direction);
+        (pdf > 0.0).then(|| SkySample { direction, radiance: self.radiance(direction), pdf })
     }
 
     /// Density per steradian of `direction`.
-    pub fn pdf(&self, sky: &Sky, direction: Vec3) -> f64 {
-        match (self, sky) {
-            (Self::Image(d), Sky::Equirect(e)) => d.pdf(e, direction),
-            (Self::Stars { stars, background, .. }, Sky::StarField(s)) => {
-                background * UNIFORM_SPHERE_PDF + (1.0 - background) * stars.pdf(s, direction)
+    pub fn pdf(&self, direction: Vec3) -> f64 {
+        match self {
+            Self::Image(d) => d.pdf(direction),
+            Self::Stars { stars, background, .. } => {
+                background * UNIFORM_SPHERE_PDF + (1.0 - background) * stars.pdf(direction)
             }
-            _ => UNIFORM_SPHERE_PDF,
+            Self::Constant { .. } | Self::Gradient { .. } | Self::Grid { .. } => UNIFORM_SPHERE_PDF,
         }
     }
 }
 
 /// `∫ luminance dω` by the midpoint rule over equal-angle latitude–longitude cells.
-fn quadrature_power(sky: &Sky) -> f64 {
+fn quadrature_power(radiance: impl Fn(Vec3) -> Rgb) -> f64 {
     let (rows, columns) = POWER_QUADRATURE;
     let (d_theta, d_phi) = (PI / rows as f64, 2.0 * PI / columns as f64);
     let mut sum = 0.0;
@@ -104,7 +131,7 @@ fn quadrature_power(sky: &Sky) -> f64 {
         for j in 0..columns {
             let phi = (j as f64 + 0.5) * d_phi;
             let direction = Vec3::new(sin * phi.cos(), cos, sin * phi.sin());
-            sum += f64::from(luminance(sky.radiance(direction))) * sin * d_theta * d_phi;
+            sum += f64::from(luminance(radiance(direction))) * sin * d_theta * d_phi;
         }
     }
     sum
@@ -135,7 +162,7 @@ mod tests {
     fn draws(sky: &Sky, n: usize, seed: u64) -> Vec<SkySample> {
         let distribution = SkyDistribution::new(sky);
         let mut rng = Rng::new(seed);
-        (0..n).filter_map(|_| distribution.sample(sky, [rng.next_f64(), rng.next_f64(), rng.next_f64()])).collect()
+        (0..n).filter_map(|_| distribution.sample([rng.next_f64(), rng.next_f64(), rng.next_f64()])).collect()
     }
 
     #[test]
@@ -157,7 +184,7 @@ mod tests {
             for s in &samples {
                 let ratio = f64::from(luminance(s.radiance)) / s.pdf / flux;
                 assert!((ratio - 1.0).abs() < 1e-4, "L/p = {ratio} × power at {}", s.direction);
-                assert!((distribution.pdf(&sky, s.direction) / s.pdf - 1.0).abs() < 1e-12);
+                assert!((distribution.pdf(s.direction) / s.pdf - 1.0).abs() < 1e-12);
             }
             // Most draws land on stars, which cover 1 % of the sky.
             let on_stars = samples.iter().filter(|s| luminance(s.radiance) > 10.0 * background).count();

@@ -63,9 +63,10 @@ impl Equirect {
         self.image.sample(s, t, WRAP) * self.intensity
     }
 
-    /// The distribution for sampling this sky; built once (O(pixels)).
+    /// The distribution for sampling this sky, which it carries (a copy, sharing the image);
+    /// built once (O(pixels)).
     pub fn distribution(&self) -> EquirectDistribution {
-        EquirectDistribution::new(&self.image, f64::from(self.intensity))
+        EquirectDistribution::new(self.clone())
     }
 }
 
@@ -87,24 +88,31 @@ const WRAP: [WrapMode; 2] = [WrapMode::Repeat, WrapMode::Clamp];
 /// with nonzero radiance thus has nonzero density, except at the poles (`sin θ = 0`), a set of measure zero.
 /// The sky's `intensity` scales every weight alike, so only [`EquirectDistribution::power`] uses it.
 ///
-/// It belongs to the sky it was built from: pass that sky to [`EquirectDistribution::sample`] and
-/// [`EquirectDistribution::pdf`] (it supplies the rotation frame).
+/// It carries the sky it was built from (whose image its weights are, and whose frame turns its
+/// `(s, t)` into directions), so that it cannot be used with another.
 #[derive(Clone, Debug)]
 pub struct EquirectDistribution {
+    sky: Equirect,
     /// Over the image's pixels in `(s, t) ∈ [0, 1]²`.
     pixels: PiecewiseConstant2D,
     power: f64,
 }
 
 impl EquirectDistribution {
-    fn new(image: &ImageData, intensity: f64) -> Self {
+    fn new(sky: Equirect) -> Self {
+        let (image, intensity) = (&*sky.image, f64::from(sky.intensity));
         let (width, height) = (image.width(), image.height());
         let weights: Vec<f64> = (0..height)
             .flat_map(|y| (0..width).map(move |x| (x, y)))
             .map(|(x, y)| neighbourhood_luminance(image, x, y) * row_max_sin_theta(y, height))
             .collect();
         let power = bilinear_luminance_integral(image) * intensity;
-        Self { pixels: PiecewiseConstant2D::new(weights, width, height), power }
+        Self { pixels: PiecewiseConstant2D::new(weights, width, height), power, sky }
+    }
+
+    /// The sky it draws from.
+    pub fn sky(&self) -> &Equirect {
+        &self.sky
     }
 
     /// A unit direction (the direction the sky is *seen* in, as [`Equirect::radiance`] takes it) drawn from
@@ -113,16 +121,16 @@ impl EquirectDistribution {
     ///
     /// Light from the sky seen in `dir` travels along `−dir`. The density is [`EquirectDistribution::pdf`]
     /// of the returned direction, so the two agree exactly.
-    pub fn sample(&self, sky: &Equirect, u: [f64; 2]) -> Option<(Vec3, f64)> {
+    pub fn sample(&self, u: [f64; 2]) -> Option<(Vec3, f64)> {
         let ([s, t], _) = self.pixels.sample(u);
-        let dir = sky.direction(s, t);
-        let pdf = self.pdf(sky, dir);
+        let dir = self.sky.direction(s, t);
+        let pdf = self.pdf(dir);
         (pdf > 0.0).then_some((dir, pdf))
     }
 
     /// Density per steradian of `dir`.
-    pub fn pdf(&self, sky: &Equirect, dir: Vec3) -> f64 {
-        let (s, t) = sky.image_coordinates(dir);
+    pub fn pdf(&self, dir: Vec3) -> f64 {
+        let (s, t) = self.sky.image_coordinates(dir);
         // sin θ from whichever pole is nearer, so that it is exactly 0 at both (`sin π` is not).
         let sin_theta = (PI * t.min(1.0 - t)).sin();
         if sin_theta > 0.0 {
@@ -241,7 +249,7 @@ mod tests {
     fn sample_mean(sky: &Equirect, n: usize, f: impl Fn(Vec3, f64) -> f64) -> f64 {
         let dist = sky.distribution();
         let mut rng = Rng::new(7);
-        let sum: f64 = (0..n).filter_map(|_| dist.sample(sky, rng.next_2d())).map(|(d, pdf)| f(d, pdf)).sum();
+        let sum: f64 = (0..n).filter_map(|_| dist.sample(rng.next_2d())).map(|(d, pdf)| f(d, pdf)).sum();
         sum / n as f64
     }
 
@@ -263,9 +271,9 @@ mod tests {
             let n = 1_000_000;
             let mut solid_angle = 0.0;
             for _ in 0..n {
-                let (dir, pdf) = dist.sample(&sky, rng.next_2d()).expect("the density is positive almost everywhere");
+                let (dir, pdf) = dist.sample(rng.next_2d()).expect("the density is positive almost everywhere");
                 assert!((dir.length() - 1.0).abs() < 1e-12);
-                let again = dist.pdf(&sky, dir);
+                let again = dist.pdf(dir);
                 assert!((pdf - again).abs() <= 1e-9 * pdf, "sample says {pdf}, pdf says {again}");
                 solid_angle += 1.0 / pdf;
             }
@@ -338,15 +346,15 @@ mod tests {
     fn black_skies_and_the_poles_have_no_density() {
         let black = sky_of(grey(8, 4, |_, _| 0.0), SkyFrame::Y_UP, 1.0);
         let dist = black.distribution();
-        assert_eq!(dist.sample(&black, [0.3, 0.6]), None);
-        assert_eq!(dist.pdf(&black, Vec3::X), 0.0);
+        assert_eq!(dist.sample([0.3, 0.6]), None);
+        assert_eq!(dist.pdf(Vec3::X), 0.0);
         assert_eq!(dist.power(), 0.0);
         // Upright, so that the poles are exactly `±y` (a tilted up vector only reaches sin θ ≈ 1e-8).
         let lit = sky_of(grey(8, 4, |_, _| 1.0), SkyFrame::Y_UP, 1.0);
         let dist = lit.distribution();
-        assert_eq!(dist.pdf(&lit, Vec3::Y), 0.0);
-        assert_eq!(dist.pdf(&lit, Vec3::NEG_Y), 0.0);
-        assert!(dist.pdf(&lit, lit.direction(0.5, 0.5)) > 0.0);
+        assert_eq!(dist.pdf(Vec3::Y), 0.0);
+        assert_eq!(dist.pdf(Vec3::NEG_Y), 0.0);
+        assert!(dist.pdf(lit.direction(0.5, 0.5)) > 0.0);
     }
 
     #[test]

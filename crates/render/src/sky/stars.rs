@@ -160,8 +160,12 @@ impl Star {
 /// (regenerated from the cell's stream), then a direction uniform in solid angle on its disc. A star is
 /// thus drawn with probability `F / F_total` and a direction on it with density `F / (F_total Ω)`: its
 /// luminance over `F_total`, summed over the discs that cover the direction.
+///
+/// It carries the field it was built from (whose stars its cells hold), so that it cannot be used
+/// with another.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StarDistribution {
+    field: StarField,
     /// The cells that hold stars, and the running sums of their stars' flux.
     cells: Vec<Cell>,
     cdf: Vec<f64>,
@@ -174,13 +178,18 @@ impl StarDistribution {
     }
 
     /// A direction drawn with `u_star` (which star) and `u` (where on its disc); `None` without stars.
-    pub fn sample(&self, field: &StarField, u_star: f64, u: [f64; 2]) -> Option<Vec3> {
+    /// The field it draws from.
+    pub fn field(&self) -> &StarField {
+        &self.field
+    }
+
+    pub fn sample(&self, u_star: f64, u: [f64; 2]) -> Option<Vec3> {
         let target = u_star * self.total_flux();
         let k = self.cdf.partition_point(|&c| c <= target).min(self.cells.len().checked_sub(1)?);
         // What is left of `target` past the cells before this one picks the star within it.
         let mut left = target - if k == 0 { 0.0 } else { self.cdf[k - 1] };
         let mut chosen = None;
-        field.cell_stars(self.cells[k], |star| {
+        self.field.cell_stars(self.cells[k], |star| {
             if left >= 0.0 {
                 chosen = Some(*star);
                 left -= star.flux;
@@ -193,13 +202,13 @@ impl StarDistribution {
     }
 
     /// Density per steradian of `dir` among the stars: `Σ F / (F_total Ω)` over the discs covering it.
-    pub fn pdf(&self, field: &StarField, dir: Vec3) -> f64 {
+    pub fn pdf(&self, dir: Vec3) -> f64 {
         let total = self.total_flux();
         if !(total > 0.0) {
             return 0.0;
         }
         let mut density = 0.0;
-        field.covering(dir, |star| density += star.flux / (total * star.solid_angle()));
+        self.field.covering(dir, |star| density += star.flux / (total * star.solid_angle()));
         density
     }
 }
@@ -355,7 +364,8 @@ impl StarField {
         }
     }
 
-    /// The distribution of directions on the stars' discs in proportion to their flux.
+    /// The distribution of directions on the stars' discs in proportion to their flux, which
+    /// carries a copy of the field (a few numbers: the stars are regenerated from them).
     pub fn distribution(&self) -> StarDistribution {
         let (mut cells, mut cdf, mut total) = (Vec::new(), Vec::new(), 0.0);
         for cell in self.cells() {
@@ -367,7 +377,7 @@ impl StarField {
                 cdf.push(total);
             }
         }
-        StarDistribution { cells, cdf }
+        StarDistribution { field: self.clone(), cells, cdf }
     }
 
     /// The cells that can hold a star whose disc reaches `dir`: its own cell and, when `dir` is within the

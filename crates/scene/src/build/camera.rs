@@ -2,7 +2,7 @@
 //! and the frames of an animation.
 
 use super::Builder;
-use crate::reader::{fmt_vec, num, Result, Table};
+use crate::reader::{fmt_vec, num, Kind, Result, Table};
 use render::camera::{look_rotation, Equirectangular, Fisheye, Ods, Perspective, Projection};
 use render::camera_path::{CameraPath, CameraRig, Keyframe, Observer, Pose};
 use render::geometry::Vec3;
@@ -36,12 +36,13 @@ const PERSPECTIVE: usize = 0;
 /// Reads a projection's own fields from `[camera]`; `start` is the pose at time 0.
 type ReadProjection = fn(&Table<'_>, &Pose) -> Result<Projection>;
 
-/// The projections by name, each with the fields only it reads and how it reads them.
-const PROJECTIONS: &[(&str, &[&str], ReadProjection)] = &[
-    ("perspective", &["fov", "aperture", "focus_distance"], perspective),
-    ("equirectangular", &[], |_, _| Ok(Projection::Equirectangular(Equirectangular))),
-    ("fisheye", &["fisheye_fov"], fisheye),
-    ("ods", &["ipd"], ods),
+/// The projections by name, each with the fields of `[camera]` only it reads and how it reads
+/// them.
+const PROJECTIONS: &[Kind<ReadProjection>] = &[
+    Kind { name: "perspective", keys: &["fov", "aperture", "focus_distance"], build: perspective },
+    Kind { name: "equirectangular", keys: &[], build: |_, _| Ok(Projection::Equirectangular(Equirectangular)) },
+    Kind { name: "fisheye", keys: &["fisheye_fov"], build: fisheye },
+    Kind { name: "ods", keys: &["ipd"], build: ods },
 ];
 
 /// The fields a keyframe inherits from `[camera]`.
@@ -59,7 +60,7 @@ impl Builder<'_> {
             fov: t.or("fov", 40.0, |n| n.f64())?,
             focus_distance: t.opt("focus_distance", |n| n.f64())?,
         };
-        let names: Vec<&str> = PROJECTIONS.iter().map(|p| p.0).collect();
+        let names: Vec<&str> = PROJECTIONS.iter().map(|p| p.name).collect();
         let kind = t.get("projection").map(|n| n.keyword("projection", &names)).transpose()?.unwrap_or(PERSPECTIVE);
         only_own_fields(t, kind)?;
         let path = match (t.get("keyframes"), t.get("orbit")) {
@@ -76,7 +77,7 @@ impl Builder<'_> {
                 }
             }
         };
-        let projection = (PROJECTIONS[kind].2)(t, &path.pose(0.0))?;
+        let projection = (PROJECTIONS[kind].build)(t, &path.pose(0.0))?;
         Ok(CameraRig { region: self.region(t)?, path, projection, observer: observer(t)? })
     }
 
@@ -117,16 +118,16 @@ impl Builder<'_> {
 
 /// An error for a field of table `t` that only another projection than `PROJECTIONS[kind]` reads.
 fn only_own_fields(t: &Table<'_>, kind: usize) -> Result<()> {
-    for (i, (owner, fields, _)) in PROJECTIONS.iter().enumerate().filter(|(i, _)| *i != kind) {
-        if let Some(n) = fields.iter().filter(|f| t.allows(f)).find_map(|f| t.get(f)) {
+    for (i, owner) in PROJECTIONS.iter().enumerate().filter(|(i, _)| *i != kind) {
+        if let Some(n) = owner.keys.iter().filter(|f| t.allows(f)).find_map(|f| t.get(f)) {
             let what = if i == PERSPECTIVE {
                 " (field of view, depth of field and focus are a perspective lens's)"
             } else {
                 ""
             };
             return Err(n.err(format!(
-                "only used with projection = \"{owner}\"{what}; this camera's projection is \"{}\"",
-                PROJECTIONS[kind].0
+                "only used with projection = \"{}\"{what}; this camera's projection is \"{}\"",
+                owner.name, PROJECTIONS[kind].name
             )));
         }
     }

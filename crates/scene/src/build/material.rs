@@ -2,7 +2,7 @@
 
 use super::Builder;
 use crate::error::suggest;
-use crate::reader::{fmt_rgb, num, Node, Result, Table};
+use crate::reader::{fmt_rgb, num, Kind, Node, Result, Table};
 use render::color::Rgb;
 use render::image_io::ImageData;
 use render::material::{ConductorFresnel, Dispersion, Material};
@@ -10,19 +10,27 @@ use render::texture::earth::Earth;
 use render::texture::{GridAxis, GridHighlight, Texture};
 use std::sync::Arc;
 
-const MATERIALS: &[(&str, &[&str])] = &[
-    ("diffuse", &["reflectance"]),
-    ("mirror", &["reflectance"]),
-    ("dielectric", &["ior", "abbe", "transmittance"]),
-    ("conductor", &["roughness", "metal", "eta", "k", "f0"]),
-    ("plastic", &["diffuse", "roughness", "ior"]),
+/// Reads one material type's parameters from its table and builds it.
+type BuildMaterial = fn(&mut Builder<'_>, &Table<'_>) -> Result<Material>;
+
+/// The material types of scene files: name, keys besides `type`, and builder.
+const MATERIALS: &[Kind<BuildMaterial>] = &[
+    Kind { name: "diffuse", keys: &["reflectance"], build: diffuse },
+    Kind { name: "mirror", keys: &["reflectance"], build: mirror },
+    Kind { name: "dielectric", keys: &["ior", "abbe", "transmittance"], build: dielectric },
+    Kind { name: "conductor", keys: &["roughness", "metal", "eta", "k", "f0"], build: conductor },
+    Kind { name: "plastic", keys: &["diffuse", "roughness", "ior"], build: plastic },
 ];
 
-const TEXTURES: &[(&str, &[&str])] = &[
-    ("checker", &["a", "b", "uv_scale"]),
-    ("grid", &["background", "line", "spacing", "width", "highlights", "uv_scale"]),
-    ("image", &["file", "uv_scale"]),
-    ("earth", &["seed", "ocean", "clouds"]),
+/// Reads one texture type's parameters from its table and builds it.
+type BuildTexture = fn(&mut Builder<'_>, &Table<'_>) -> Result<Texture>;
+
+/// The texture types of scene files: name, keys besides `type`, and builder.
+const TEXTURES: &[Kind<BuildTexture>] = &[
+    Kind { name: "checker", keys: &["a", "b", "uv_scale"], build: checker },
+    Kind { name: "grid", keys: &["background", "line", "spacing", "width", "highlights", "uv_scale"], build: grid },
+    Kind { name: "image", keys: &["file", "uv_scale"], build: image },
+    Kind { name: "earth", keys: &["seed", "ocean", "clouds"], build: earth },
 ];
 
 const HIGHLIGHT_KEYS: &[&str] = &["axis", "index", "colour", "color"];
@@ -85,35 +93,8 @@ impl Builder<'_> {
 
     /// A material table.
     pub(super) fn material(&mut self, n: &Node<'_>) -> Result<Material> {
-        let (kind, t) = n.tagged("material", MATERIALS)?;
-        let material = match MATERIALS[kind].0 {
-            "diffuse" => Material::Diffuse { reflectance: self.texture_or(&t, "reflectance", 0.5)? },
-            "mirror" => Material::Mirror { reflectance: self.texture_or(&t, "reflectance", 1.0)? },
-            "dielectric" => {
-                let ior = t.or("ior", 1.5, |n| n.f64())?;
-                if !(ior > 0.0) {
-                    return Err(t.loc("ior").err(format!("must be > 0, got {}", num(ior))));
-                }
-                let dispersion =
-                    match t.get("abbe") {
-                        Some(abbe) => Some(Dispersion::from_abbe(ior, abbe.f64()?).ok_or_else(|| {
-                            abbe.err("must be a positive Abbe number (BK7 glass: 64.17), with ior > 1")
-                        })?),
-                        None => None,
-                    };
-                Material::Dielectric { ior, dispersion, transmittance: self.texture_or(&t, "transmittance", 1.0)? }
-            }
-            "conductor" => Material::RoughConductor { roughness: roughness(&t)?, fresnel: conductor_fresnel(&t)? },
-            _ => {
-                let ior = t.or("ior", 1.5, |n| n.f64())?;
-                if !(ior >= 1.0) {
-                    return Err(t
-                        .loc("ior")
-                        .err(format!("must be ≥ 1 (a coating denser than outside), got {}", num(ior))));
-                }
-                Material::RoughPlastic { diffuse: self.texture_or(&t, "diffuse", 0.5)?, roughness: roughness(&t)?, ior }
-            }
-        };
+        let (kind, t) = n.kind("material", MATERIALS)?;
+        let material = (kind.build)(self, &t)?;
         material.validate().map_err(|e| n.err(e))?;
         Ok(material)
     }
@@ -130,52 +111,8 @@ impl Builder<'_> {
         if !n.is_table() {
             return albedo(n).map(Texture::from);
         }
-        let (kind, t) = n.tagged("texture", TEXTURES)?;
-        let uv_scale = |default: [f64; 2]| t.or("uv_scale", default, |n| n.pair());
-        let texture = match TEXTURES[kind].0 {
-            "checker" => Texture::Checker {
-                a: Box::new(self.texture_or(&t, "a", 0.8)?),
-                b: Box::new(self.texture_or(&t, "b", 0.2)?),
-                uv_scale: uv_scale([10.0, 10.0])?,
-            },
-            "grid" => {
-                let spacing = t.or("spacing", 0.1, |n| n.f64())?;
-                if !(spacing > 0.0) {
-                    return Err(t.loc("spacing").err(format!("must be > 0, got {}", num(spacing))));
-                }
-                let width = t.or("width", 0.01, |n| n.f64())?;
-                if !(width >= 0.0) {
-                    return Err(t.loc("width").err(format!("must be ≥ 0, got {}", num(width))));
-                }
-                let mut highlights = Vec::new();
-                if let Some(list) = t.get("highlights") {
-                    for h in list.array()? {
-                        highlights.push(highlight(&h.table(HIGHLIGHT_KEYS)?)?);
-                    }
-                }
-                Texture::Grid {
-                    background: t.or("background", Rgb::splat(0.9), albedo)?,
-                    line: t.or("line", Rgb::splat(0.05), albedo)?,
-                    spacing,
-                    width,
-                    highlights,
-                    uv_scale: uv_scale([1.0, 1.0])?,
-                }
-            }
-            "image" => Texture::Image { image: self.image(&t.require("file")?)?, uv_scale: uv_scale([1.0, 1.0])? },
-            _ => {
-                let seed = t.or("seed", 0, |n| n.u32_in(0, u32::MAX))?;
-                let fraction = |key: &str, default: f64| {
-                    let x = t.or(key, default, |n| n.f64())?;
-                    if (0.0..=1.0).contains(&x) {
-                        Ok(x)
-                    } else {
-                        Err(t.loc(key).err(format!("must be a fraction in [0, 1], got {}", num(x))))
-                    }
-                };
-                Texture::Earth(Box::new(Earth::new(seed, fraction("ocean", 0.65)?, fraction("clouds", 0.35)?)))
-            }
-        };
+        let (kind, t) = n.kind("texture", TEXTURES)?;
+        let texture = (kind.build)(self, &t)?;
         texture.validate().map_err(|e| n.err(e))?;
         Ok(texture)
     }
@@ -192,9 +129,102 @@ impl Builder<'_> {
     }
 }
 
+fn diffuse(b: &mut Builder<'_>, t: &Table<'_>) -> Result<Material> {
+    Ok(Material::Diffuse { reflectance: b.texture_or(t, "reflectance", 0.5)? })
+}
+
+fn mirror(b: &mut Builder<'_>, t: &Table<'_>) -> Result<Material> {
+    Ok(Material::Mirror { reflectance: b.texture_or(t, "reflectance", 1.0)? })
+}
+
+/// `ior` (default 1.5, > 0) and, for dispersion, `abbe`.
+fn dielectric(b: &mut Builder<'_>, t: &Table<'_>) -> Result<Material> {
+    let ior = t.or("ior", 1.5, |n| n.f64())?;
+    if !(ior > 0.0) {
+        return Err(t.loc("ior").err(format!("must be > 0, got {}", num(ior))));
+    }
+    let dispersion = match t.get("abbe") {
+        Some(abbe) => Some(
+            Dispersion::from_abbe(ior, abbe.f64()?)
+                .ok_or_else(|| abbe.err("must be a positive Abbe number (BK7 glass: 64.17), with ior > 1"))?,
+        ),
+        None => None,
+    };
+    Ok(Material::Dielectric { ior, dispersion, transmittance: b.texture_or(t, "transmittance", 1.0)? })
+}
+
+fn conductor(_: &mut Builder<'_>, t: &Table<'_>) -> Result<Material> {
+    Ok(Material::RoughConductor { roughness: roughness(t)?, fresnel: conductor_fresnel(t)? })
+}
+
+/// `ior` (default 1.5) at least 1: the coating is denser than outside.
+fn plastic(b: &mut Builder<'_>, t: &Table<'_>) -> Result<Material> {
+    let ior = t.or("ior", 1.5, |n| n.f64())?;
+    if !(ior >= 1.0) {
+        return Err(t.loc("ior").err(format!("must be ≥ 1 (a coating denser than outside), got {}", num(ior))));
+    }
+    Ok(Material::RoughPlastic { diffuse: b.texture_or(t, "diffuse", 0.5)?, roughness: roughness(t)?, ior })
+}
+
+/// `uv_scale`: a number or `[su, sv]`.
+fn uv_scale(t: &Table<'_>, default: [f64; 2]) -> Result<[f64; 2]> {
+    t.or("uv_scale", default, |n| n.pair())
+}
+
+fn checker(b: &mut Builder<'_>, t: &Table<'_>) -> Result<Texture> {
+    Ok(Texture::Checker {
+        a: Box::new(b.texture_or(t, "a", 0.8)?),
+        b: Box::new(b.texture_or(t, "b", 0.2)?),
+        uv_scale: uv_scale(t, [10.0, 10.0])?,
+    })
+}
+
+fn grid(_: &mut Builder<'_>, t: &Table<'_>) -> Result<Texture> {
+    let spacing = t.or("spacing", 0.1, |n| n.f64())?;
+    if !(spacing > 0.0) {
+        return Err(t.loc("spacing").err(format!("must be > 0, got {}", num(spacing))));
+    }
+    let width = t.or("width", 0.01, |n| n.f64())?;
+    if !(width >= 0.0) {
+        return Err(t.loc("width").err(format!("must be ≥ 0, got {}", num(width))));
+    }
+    let mut highlights = Vec::new();
+    if let Some(list) = t.get("highlights") {
+        for h in list.array()? {
+            highlights.push(highlight(&h.table(HIGHLIGHT_KEYS)?)?);
+        }
+    }
+    Ok(Texture::Grid {
+        background: t.or("background", Rgb::splat(0.9), albedo)?,
+        line: t.or("line", Rgb::splat(0.05), albedo)?,
+        spacing,
+        width,
+        highlights,
+        uv_scale: uv_scale(t, [1.0, 1.0])?,
+    })
+}
+
+fn image(b: &mut Builder<'_>, t: &Table<'_>) -> Result<Texture> {
+    Ok(Texture::Image { image: b.image(&t.require("file")?)?, uv_scale: uv_scale(t, [1.0, 1.0])? })
+}
+
+/// `seed`, and `ocean` and `clouds` as fractions of the surface in `[0, 1]`.
+fn earth(_: &mut Builder<'_>, t: &Table<'_>) -> Result<Texture> {
+    let seed = t.or("seed", 0, |n| n.u32_in(0, u32::MAX))?;
+    let fraction = |key: &str, default: f64| {
+        let x = t.or(key, default, |n| n.f64())?;
+        if (0.0..=1.0).contains(&x) {
+            Ok(x)
+        } else {
+            Err(t.loc(key).err(format!("must be a fraction in [0, 1], got {}", num(x))))
+        }
+    };
+    Ok(Texture::Earth(Box::new(Earth::new(seed, fraction("ocean", 0.65)?, fraction("clouds", 0.35)?))))
+}
+
 /// `{ axis = "u" | "v", index = k, colour = [r, g, b] }`.
 fn highlight(t: &Table<'_>) -> Result<GridHighlight> {
-    let axis = [GridAxis::U, GridAxis::V][t.req("axis", |n| n.keyword("axis", &["u", "v"]))?];
+    let axis = t.req("axis", |n| n.choice("axis", &[("u", GridAxis::U), ("v", GridAxis::V)]))?;
     let index = t.req("index", |n| n.int())?;
     let colour = match t.get_alias(&["colour", "color"])? {
         Some(n) => albedo(&n)?,

@@ -2,7 +2,7 @@
 
 use super::sky::radiance;
 use super::Builder;
-use crate::reader::{fmt_vec, num, Loc, Node, Result, Table};
+use crate::reader::{fmt_vec, num, Kind, Loc, Node, Result, Table};
 use render::color::Rgb;
 use render::emission::{BlackbodyLight, Profile, Radiance};
 use render::geometry::Vec3;
@@ -15,15 +15,86 @@ use spacetime::Region;
 
 const OBJECT_KEYS: &[&str] = &["shape", "gltf", "material", "materials", "emission", "transform", "region"];
 
-const SHAPES: &[(&str, &[&str])] = &[
-    ("sphere", &["center", "centre", "radius"]),
-    ("plane", &["point", "normal"]),
-    ("rectangle", &["corner", "edge_u", "edge_v"]),
-    ("disk", &["center", "centre", "normal", "radius", "inner_radius"]),
-    ("box", &["min", "max"]),
-    ("cylinder", &["base", "axis", "radius", "height"]),
-    ("mesh", &["file"]),
+/// What a shape's builder made: its shapes (one, or a mesh's triangles), or a shape
+/// constructor's complaint, which [`shape_error`] points at the parameter it names.
+type Built = std::result::Result<Vec<Shape>, ShapeError>;
+
+/// Reads one shape type's parameters from its table and builds it, placed by the transform.
+type BuildShape = fn(&Builder<'_>, &Table<'_>, &Transform) -> Result<Built>;
+
+/// The shape types of scene files: name, keys besides `type`, and builder.
+const SHAPES: &[Kind<BuildShape>] = &[
+    Kind { name: "sphere", keys: &["center", "centre", "radius"], build: sphere },
+    Kind { name: "plane", keys: &["point", "normal"], build: plane },
+    Kind { name: "rectangle", keys: &["corner", "edge_u", "edge_v"], build: rectangle },
+    Kind { name: "disk", keys: &["center", "centre", "normal", "radius", "inner_radius"], build: disk },
+    Kind { name: "box", keys: &["min", "max"], build: cuboid },
+    Kind { name: "cylinder", keys: &["base", "axis", "radius", "height"], build: cylinder },
+    Kind { name: "mesh", keys: &["file"], build: mesh },
 ];
+
+fn sphere(_: &Builder<'_>, t: &Table<'_>, placement: &Transform) -> Result<Built> {
+    Ok(one(Shape::sphere(center(t)?, positive(t, "radius")?, placement)))
+}
+
+fn plane(_: &Builder<'_>, t: &Table<'_>, placement: &Transform) -> Result<Built> {
+    Ok(one(Shape::plane(t.req("point", |n| n.vec3())?, t.req("normal", |n| n.direction())?, placement)))
+}
+
+fn rectangle(_: &Builder<'_>, t: &Table<'_>, placement: &Transform) -> Result<Built> {
+    Ok(one(Shape::rectangle(
+        t.req("corner", |n| n.vec3())?,
+        t.req("edge_u", |n| n.vec3())?,
+        t.req("edge_v", |n| n.vec3())?,
+        placement,
+    )))
+}
+
+/// A disk, or with `inner_radius` (default 0) an annulus.
+fn disk(_: &Builder<'_>, t: &Table<'_>, placement: &Transform) -> Result<Built> {
+    Ok(one(Shape::annulus(
+        center(t)?,
+        t.req("normal", |n| n.direction())?,
+        t.or("inner_radius", 0.0, |n| n.f64())?,
+        positive(t, "radius")?,
+        placement,
+    )))
+}
+
+/// `type = "box"`: `min < max` on every axis, checked here to point at `max`.
+fn cuboid(_: &Builder<'_>, t: &Table<'_>, placement: &Transform) -> Result<Built> {
+    let min = t.req("min", |n| n.vec3())?;
+    let max = t.req("max", |n| n.vec3())?;
+    if !min.cmplt(max).all() {
+        return Err(t.loc("max").err(format!(
+            "must be greater than min {} on every axis, got {}",
+            fmt_vec(min),
+            fmt_vec(max)
+        )));
+    }
+    Ok(one(Shape::cuboid(min, max, placement)))
+}
+
+fn cylinder(_: &Builder<'_>, t: &Table<'_>, placement: &Transform) -> Result<Built> {
+    Ok(one(Shape::cylinder(
+        t.req("base", |n| n.vec3())?,
+        t.req("axis", |n| n.direction())?,
+        positive(t, "radius")?,
+        positive(t, "height")?,
+        placement,
+    )))
+}
+
+/// `type = "mesh"`: an OBJ file's triangles; a file that cannot be read is an error at `file`.
+fn mesh(b: &Builder<'_>, t: &Table<'_>, placement: &Transform) -> Result<Built> {
+    let file = t.require("file")?;
+    load_obj(&b.resolve(file.str()?), placement).map(Ok).map_err(|e| file.err(e.to_string()))
+}
+
+/// One shape, or its constructor's complaint.
+fn one(shape: std::result::Result<Shape, ShapeError>) -> Built {
+    shape.map(|s| vec![s])
+}
 
 const TRANSFORM_KEYS: &[&str] = &["translate", "rotate", "scale"];
 const ROTATION_KEYS: &[&str] = &["axis", "degrees"];
@@ -171,48 +242,8 @@ impl Builder<'_> {
     }
 
     fn shapes(&self, n: &Node<'_>, placement: &Transform, transform_loc: Option<Loc<'_>>) -> Result<Vec<Shape>> {
-        let (kind, t) = n.tagged("shape", SHAPES)?;
-        let built = match SHAPES[kind].0 {
-            "sphere" => Shape::sphere(center(&t)?, positive(&t, "radius")?, placement),
-            "plane" => Shape::plane(t.req("point", |n| n.vec3())?, t.req("normal", |n| n.direction())?, placement),
-            "rectangle" => Shape::rectangle(
-                t.req("corner", |n| n.vec3())?,
-                t.req("edge_u", |n| n.vec3())?,
-                t.req("edge_v", |n| n.vec3())?,
-                placement,
-            ),
-            "disk" => Shape::annulus(
-                center(&t)?,
-                t.req("normal", |n| n.direction())?,
-                t.or("inner_radius", 0.0, |n| n.f64())?,
-                positive(&t, "radius")?,
-                placement,
-            ),
-            "box" => {
-                let min = t.req("min", |n| n.vec3())?;
-                let max = t.req("max", |n| n.vec3())?;
-                if !min.cmplt(max).all() {
-                    return Err(t.loc("max").err(format!(
-                        "must be greater than min {} on every axis, got {}",
-                        fmt_vec(min),
-                        fmt_vec(max)
-                    )));
-                }
-                Shape::cuboid(min, max, placement)
-            }
-            "cylinder" => Shape::cylinder(
-                t.req("base", |n| n.vec3())?,
-                t.req("axis", |n| n.direction())?,
-                positive(&t, "radius")?,
-                positive(&t, "height")?,
-                placement,
-            ),
-            _ => {
-                let file = t.require("file")?;
-                return load_obj(&self.resolve(file.str()?), placement).map_err(|e| file.err(e.to_string()));
-            }
-        };
-        built.map(|s| vec![s]).map_err(|e| shape_error(&t, e, transform_loc))
+        let (kind, t) = n.kind("shape", SHAPES)?;
+        (kind.build)(self, &t, placement)?.map_err(|e| shape_error(&t, e, transform_loc))
     }
 }
 

@@ -1,8 +1,8 @@
 //! `[render]`: image size, sampling, integrator, reconstruction filter and tone mapping.
 
-use crate::reader::{num, Node, Result, Table};
+use crate::reader::{num, Node, Result, Table, Tagged};
 use render::emission::Shown;
-use render::film::{Curve, DataChannel, Filter, FilterError, SpectrumChannels, ToneMap, MITCHELL_RECOMMENDED_B_C};
+use render::film::{Curve, DataChannel, Filter, FilterError, FilterKind, SpectrumChannels, ToneMap, FILTERS};
 use render::integrator::photon;
 use render::settings::{Connector, IntegratorKind, Intersection, PhotonSettings, RenderSettings};
 use spacetime::Spacetime;
@@ -40,16 +40,26 @@ const MAX_DEPTH: u32 = 1024;
 /// The most photons per iteration accepted.
 const MAX_PHOTONS: u64 = 1 << 32;
 
+/// The integrators by name.
+const INTEGRATORS: &[(&str, IntegratorKind)] =
+    &[("path", IntegratorKind::Path), ("brute-force", IntegratorKind::BruteForce), ("photon", IntegratorKind::Photon)];
+
+/// The intersection modes by name; the poster's with its default step and iterations, which
+/// `poster_step` and `poster_max_iterations` replace.
+const INTERSECTIONS: &[(&str, Intersection)] = &[("chord", Intersection::Chord), ("poster", Intersection::POSTER)];
+
+/// The tone curves by name.
+const TONE_CURVES: &[(&str, Curve)] = &[("filmic", Curve::Filmic), ("linear", Curve::Linear)];
+
+/// The light connectors by name.
+const CONNECTORS: &[(&str, Connector)] = &[("auto", Connector::Auto), ("aimed", Connector::Aimed)];
+
 /// `[render]`, in a scene of `spacetime` (the photon integrator needs one whose light can be
 /// followed forwards in time).
 pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<RenderSettings> {
     let d = RenderSettings::default();
     let integrator = match t.get("integrator") {
-        Some(n) => {
-            const KINDS: [IntegratorKind; 3] =
-                [IntegratorKind::Path, IntegratorKind::BruteForce, IntegratorKind::Photon];
-            KINDS[n.keyword("integrator", &["path", "brute-force", "photon"])?]
-        }
+        Some(n) => n.choice("integrator", INTEGRATORS)?,
         None => d.integrator,
     };
     if integrator == IntegratorKind::Photon && !photon::supports(spacetime) {
@@ -61,7 +71,7 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
     }
     let photon = photon_settings(t, integrator)?;
     let intersection = match t.get("intersection") {
-        Some(n) => [Intersection::Chord, Intersection::POSTER][n.keyword("intersection", &["chord", "poster"])?],
+        Some(n) => n.choice("intersection", INTERSECTIONS)?,
         None => d.intersection,
     };
     let intersection = match intersection {
@@ -93,7 +103,7 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
         )));
     }
     let curve = match t.get("tonemap") {
-        Some(n) => [Curve::Filmic, Curve::Linear][n.keyword("tone map", &["filmic", "linear"])?],
+        Some(n) => n.choice("tone map", TONE_CURVES)?,
         None => d.tonemap.curve,
     };
     let exposure_ev = t.or("exposure", d.tonemap.exposure_ev, |n| n.f64())?;
@@ -110,7 +120,7 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
         photon,
         intersection,
         connector: match t.get("connector") {
-            Some(n) => [Connector::Auto, Connector::Aimed][n.keyword("connector", &["auto", "aimed"])?],
+            Some(n) => n.choice("connector", CONNECTORS)?,
             None => d.connector,
         },
         filter: match t.get("filter") {
@@ -206,50 +216,36 @@ fn photon_settings(t: &Table<'_>, integrator: IntegratorKind) -> Result<PhotonSe
     Ok(PhotonSettings { per_iteration, radius })
 }
 
-const FILTERS: &[(&str, &[&str])] = &[
-    ("box", &["radius"]),
-    ("tent", &["radius"]),
-    ("gaussian", &["radius", "sigma"]),
-    ("mitchell", &["radius", "b", "c"]),
-    ("blackman-harris", &["radius"]),
-];
+/// The filters' table is the render crate's [`FILTERS`]: name, default radius, parameters with
+/// their defaults, and constructor. Its keys are `radius` and the parameters.
+impl Tagged for FilterKind {
+    fn name(&self) -> &'static str {
+        self.name
+    }
 
-/// Default radius of each filter, in pixels (pbrt-v4's defaults; Blackman–Harris as Gaussian).
-const DEFAULT_RADIUS: [f64; 5] = [0.5, 2.0, 1.5, 2.0, 1.5];
+    fn keys(&self) -> Vec<&'static str> {
+        std::iter::once("radius").chain(self.parameters.iter().map(|p| p.0)).collect()
+    }
+}
 
 /// `filter = "name"` (default parameters) or `filter = { type = "name", … }`.
 fn filter(n: &Node<'_>) -> Result<Filter> {
-    let names: Vec<&str> = FILTERS.iter().map(|f| f.0).collect();
     if n.is_str() {
-        let kind = n.keyword("filter", &names)?;
-        let r = [DEFAULT_RADIUS[kind]; 2];
-        let built = match kind {
-            0 => Filter::box_filter(r),
-            1 => Filter::tent(r),
-            2 => Filter::gaussian(r, 0.5),
-            3 => Filter::mitchell(r, MITCHELL_RECOMMENDED_B_C, MITCHELL_RECOMMENDED_B_C),
-            _ => Filter::blackman_harris(r),
-        };
-        return built.map_err(|e| n.err(e.to_string()));
+        let names: Vec<&str> = FILTERS.iter().map(|f| f.name).collect();
+        let kind = &FILTERS[n.keyword("filter", &names)?];
+        return kind.build_default().map_err(|e| n.err(e.to_string()));
     }
-    let (kind, t) = n.tagged("filter", FILTERS)?;
-    let radius = t.or("radius", [DEFAULT_RADIUS[kind]; 2], |n| n.pair())?;
-    let built = match kind {
-        0 => Filter::box_filter(radius),
-        1 => Filter::tent(radius),
-        2 => Filter::gaussian(radius, t.or("sigma", 0.5, |n| n.f64())?),
-        3 => Filter::mitchell(
-            radius,
-            t.or("b", MITCHELL_RECOMMENDED_B_C, |n| n.f64())?,
-            t.or("c", MITCHELL_RECOMMENDED_B_C, |n| n.f64())?,
-        ),
-        _ => Filter::blackman_harris(radius),
-    };
-    built.map_err(|e| match &e {
+    let (kind, t) = n.kind("filter", FILTERS)?;
+    let radius = t.or("radius", [kind.default_radius; 2], |n| n.pair())?;
+    let values =
+        kind.parameters.iter().map(|&(key, default)| t.or(key, default, |n| n.f64())).collect::<Result<Vec<_>>>()?;
+    kind.build(radius, &values).map_err(|e| match &e {
         FilterError::InvalidRadius { .. } => t.loc("radius").err(e.to_string()),
-        FilterError::InvalidParameter { name, .. } if ["sigma", "b", "c"].contains(name) => {
+        FilterError::InvalidParameter { name, .. } if kind.parameters.iter().any(|p| p.0 == *name) => {
             t.loc(name).err(e.to_string())
         }
-        _ => t.err(e.to_string()),
+        FilterError::InvalidParameter { .. } | FilterError::NonPositiveIntegral | FilterError::NonFiniteValue => {
+            t.err(e.to_string())
+        }
     })
 }

@@ -140,7 +140,7 @@ pub(super) fn emit(
     let p_sky = sources.sky_probability(world, region);
     if rng.next_f64() < p_sky {
         let sky = sources.skies[slot(region)].as_ref()?;
-        let photon = sky.emit(region, world.sky(region), propagator, rng)?;
+        let photon = sky.emit(region, propagator, rng)?;
         let p_source = p_region * p_sky;
         return Some(Photon { power: photon.power / p_source as f32, ..photon });
     }

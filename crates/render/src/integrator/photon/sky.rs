@@ -64,11 +64,11 @@ impl SkySource {
         self.radius * self.radius * self.distribution.power()
     }
 
-    /// A photon from the sky `sky` of `region` (the sky this source was made for), its power not
-    /// yet divided by the probability of choosing this source; `None` where the sky is black in
-    /// the drawn direction.
-    pub fn emit(&self, region: Region, sky: &Sky, propagator: &Propagator, rng: &mut Rng) -> Option<Photon> {
-        let sample = self.distribution.sample(sky, [rng.next_f64(), rng.next_f64(), rng.next_f64()])?;
+    /// A photon from the sky of `region` (the sky this source was made for, which its
+    /// distribution carries), its power not yet divided by the probability of choosing this
+    /// source; `None` where the sky is black in the drawn direction.
+    pub fn emit(&self, region: Region, propagator: &Propagator, rng: &mut Rng) -> Option<Photon> {
+        let sample = self.distribution.sample([rng.next_f64(), rng.next_f64(), rng.next_f64()])?;
         if luminance(sample.radiance) <= 0.0 {
             return None;
         }
