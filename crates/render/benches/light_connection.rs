@@ -11,7 +11,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use render::geometry::Vec3;
 use render::propagator::Propagator;
 use render::settings::Intersection;
-use spacetime::geodesic::connect::{Way, Waypoints};
+use spacetime::metric::schwarzschild::connect::{Way, Waypoints};
 use spacetime::{Region, Spacetime};
 use std::hint::black_box;
 

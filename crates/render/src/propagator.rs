@@ -29,7 +29,7 @@ use crate::geometry::{Ray, Vec3};
 use crate::settings::Intersection;
 use crate::shape::SurfaceHit;
 use crate::world::{Blockers, FlatBlockers, World};
-use spacetime::geodesic::connect::{Connection, Connector, Way, Waypoints};
+use spacetime::metric::schwarzschild::connect::{Connection, Connector, Way, Waypoints};
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart, PlaneStep};
 use spacetime::geodesic::tangent_triangle::tangent_triangle;
 use spacetime::geodesic::{HamiltonianTracer, Integrator, RayStep, RayTracer, State, TraceSettings};

@@ -11,17 +11,21 @@
 //! integrate `u` itself.
 //!
 //! Schwarzschild rays that integrate `u` itself step by the Taylor series of their orbit
-//! (`u'' = −u + 3Mu²` has a polynomial right-hand side: [`binet_taylor`](super::binet_taylor)),
+//! (`u'' = −u + 3Mu²` has a polynomial right-hand side: [`binet_taylor`](crate::metric::schwarzschild::binet_taylor)),
 //! whose polynomial is also the dense output; other rays by Dormand–Prince 5(4).
 //!
 //! A wormhole's lower region uses `ũ = 1/(b₀² u)`, which obeys the same equation (the isometry
 //! `s ↦ b₀²/s`); the tracer switches at the throat.
 
-use super::binet_taylor::OrbitStep;
+use crate::metric::schwarzschild::binet_taylor::OrbitStep;
 use super::{dopri5, Failure, Fate, Integrator, Interpolant, TraceSettings, Visit};
 use crate::metric::{Metric, Region};
 use crate::tensor::{cross3, dot3, norm3, normalize3, scale3};
 use std::f64::consts::PI;
+
+mod aim;
+
+pub use aim::{plane_aim, PlaneAim, PlaneAimSettings, Side};
 
 /// A static, spherically symmetric metric reduced to the plane of a ray. `u` is the inverse
 /// chart radius, `'` is `d/dφ`, and the photon's energy is 1 so `b = L/E = L`.
@@ -58,12 +62,12 @@ pub trait PlaneMetric: Metric {
     }
     /// Whether every ray, drawn in world coordinates, bends towards the centre all along: then
     /// each piece of it that sweeps at most π lies in the triangle of its chord and end tangents
-    /// ([`tangent_triangle`](super::tangent_triangle)).
+    /// ([`tangent_triangle`](crate::geodesic::tangent_triangle)).
     fn bends_towards_centre(&self) -> bool {
         false
     }
     /// `M` where the Binet source is exactly `3Mu²` (Schwarzschild): the orbit's Taylor series
-    /// then follows from a recurrence ([`binet_taylor`](super::binet_taylor)), and the tracer
+    /// then follows from a recurrence ([`binet_taylor`](crate::metric::schwarzschild::binet_taylor)), and the tracer
     /// takes steps of its series instead of Runge–Kutta steps.
     fn schwarzschild_mass(&self) -> Option<f64> {
         None
@@ -393,7 +397,7 @@ impl PlaneStep<'_> {
 
 /// The chart's radial and azimuthal unit vectors at a point of a ray's plane, and the sign that
 /// takes the chart to world coordinates in the point's region.
-pub(super) struct PlaneAxes {
+pub(crate) struct PlaneAxes {
     sign: f64,
     radial: [f64; 3],
     azimuthal: [f64; 3],
@@ -401,24 +405,24 @@ pub(super) struct PlaneAxes {
 
 impl PlaneAxes {
     /// The directions at azimuth `φ` of the plane with basis `x̂`, `e₂`, in the upper region.
-    pub(super) fn at(xh: &[f64; 3], e2: &[f64; 3], phi: f64) -> Self {
+    pub(crate) fn at(xh: &[f64; 3], e2: &[f64; 3], phi: f64) -> Self {
         Self::at_sin_cos(xh, e2, phi.sin_cos())
     }
 
     /// [`PlaneAxes::at`] the azimuth with sine and cosine `(sin, cos)`.
-    pub(super) fn at_sin_cos(xh: &[f64; 3], e2: &[f64; 3], (sin, cos): (f64, f64)) -> Self {
+    pub(crate) fn at_sin_cos(xh: &[f64; 3], e2: &[f64; 3], (sin, cos): (f64, f64)) -> Self {
         let radial = std::array::from_fn(|i| cos * xh[i] + sin * e2[i]);
         let azimuthal = std::array::from_fn(|i| -sin * xh[i] + cos * e2[i]);
         Self { sign: 1.0, radial, azimuthal }
     }
 
     /// The world point at world radius `rho` along the radial direction.
-    pub(super) fn at_radius(&self, rho: f64) -> [f64; 3] {
+    pub(crate) fn at_radius(&self, rho: f64) -> [f64; 3] {
         scale3(&self.radial, self.sign * rho)
     }
 
     /// The unit world vector with radial and azimuthal components in the ratio `dr : dphi`.
-    pub(super) fn along(&self, dr: f64, dphi: f64) -> [f64; 3] {
+    pub(crate) fn along(&self, dr: f64, dphi: f64) -> [f64; 3] {
         normalize3(&self.scaled(dr, dphi))
     }
 

@@ -2,7 +2,7 @@
 //! problem of next-event estimation reduced to one unknown in the ray's plane.
 //!
 //! The centre, the start `x` and the target `y` span one plane, and every ray from `x` to `y`
-//! lies in it ([`super::plane`]). A ray leaves `x` at angle `ψ` from the outward radial direction,
+//! lies in it ([`super`]). A ray leaves `x` at angle `ψ` from the outward radial direction,
 //! measured by the static observer there, towards `y`'s side of the plane, and obeys the Binet
 //! equation of its metric with its impact parameter `b = f(u_x) sin ψ`
 //! ([`PlaneMetric::impact_factor`]):
@@ -34,13 +34,13 @@
 //! wind round once or more are left to BSDF sampling).
 //!
 //! A wormhole's target may lie in the other region ([`Side::Other`]): the ray must pass the
-//! throat. The tracer's lower-region variable `ũ = u_t²/u` ([`super::plane`]; `u_t` the
+//! throat. The tracer's lower-region variable `ũ = u_t²/u` ([`super`]; `u_t` the
 //! throat's `u`) obeys the same equation, so a shot that reaches the throat carries on in it,
 //! its Jacobi field changed with it at the same `φ`: `J̃ = −(ũ/u) J`, `J̃' = −(ũ/u) J' + 2(ũ/u²) u' J`.
 //! Beyond the throat `ũ` at the target's azimuth falls as `ψ` grows (steeper rays sweep less
 //! there), so the bracket's sense turns; rays that escape before the throat bound `ψ` from below,
 //! rays that escape beyond it before the target's azimuth from above. The other region's world
-//! is the chart turned inside out ([`super::plane`]): the target is aimed at as the point
+//! is the chart turned inside out ([`super`]): the target is aimed at as the point
 //! opposite it, and the directions found there are turned back.
 //!
 //! Density: turning `ψ` by `dψ` moves the point at `φ = Δφ` radially by `ρ'(u_y) J dψ` in world
@@ -53,12 +53,12 @@
 //! dΩ/dA⊥ = sin ψ / (|ρ'(u_y) J| t_φ ρ_y sin Δφ),                                     (3)
 //! ```
 //!
-//! which is `1/d²` in flat space (law of sines), and equation (3) of [`super::connect`] about
+//! which is `1/d²` in flat space (law of sines), and equation (3) of [`connect`](crate::metric::schwarzschild::connect) about
 //! Schwarzschild.
 
-use super::connect::Way;
-use super::dopri5;
-use super::plane::PlaneMetric;
+use super::PlaneMetric;
+use crate::geodesic::dopri5;
+use crate::metric::schwarzschild::connect::Way;
 use crate::tensor::{dot3, norm3, normalize3, scale3};
 use std::f64::consts::PI;
 
@@ -132,7 +132,7 @@ struct Shooter<'m, M: PlaneMetric + ?Sized> {
 }
 
 /// The ray from world point `x` to world point `y` of `metric` (an in-plane metric's world
-/// coordinates, as [`super::plane::PlaneStart::from_observer`] takes them; `y` in the region
+/// coordinates, as [`super::PlaneStart::from_observer`] takes them; `y` in the region
 /// `side` of `x`'s) that goes round the centre `way`, or `None` where the points leave the plane
 /// undetermined, either lies where no static observer is, the metric has no throat to reach the
 /// other side through, or the iteration finds no ray within its shots.
@@ -454,7 +454,7 @@ mod tests {
     #[test]
     fn both_ways_agree_with_the_schwarzschild_connector() {
         let hole = Schwarzschild::new(0.5);
-        let connector = crate::geodesic::connect::Connector::new(hole);
+        let connector = crate::metric::schwarzschild::connect::Connector::new(hole);
         let close = |a: [f64; 3], b: [f64; 3]| norm3(&std::array::from_fn(|i| a[i] - b[i]));
         let mut compared = [0; 2];
         for (x, y) in pairs() {

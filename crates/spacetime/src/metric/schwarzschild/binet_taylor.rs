@@ -23,7 +23,7 @@
 //! tolerances of the connection solver a step spans a good part of a radian, and a connection
 //! costs two thirds of what Dormand–Prince 5(4) took.
 
-use super::taylor::{product_without_first, shorter_root, square_from, value, value_and_slope};
+use crate::geodesic::taylor::{product_without_first, shorter_root, square_from, value, value_and_slope};
 
 /// Order of the series. Jorba & Zou's optimum is about `−ln(tol)/2` (8 at 10⁻⁷); measured on
 /// the connection benchmark (`cargo bench -p nullpath-spacetime --bench connect`), orders 6, 8,

@@ -58,13 +58,15 @@
 //! which is `1/d²` in flat space (`J = sin φ`, law of sines).
 
 use super::binet_taylor;
-use super::plane::{PlaneAxes, PlaneMetric};
-use super::start_table::StartTables;
-use super::tangent_triangle::tangent_triangle;
+use crate::geodesic::plane::{PlaneAxes, PlaneMetric};
+use crate::geodesic::tangent_triangle::tangent_triangle;
 use crate::metric::Schwarzschild;
 use crate::tensor::{cross3, dot3, norm3, normalize3, scale3};
 use std::f64::consts::PI;
+use start_table::StartTables;
 use std::sync::Arc;
+
+mod start_table;
 
 /// Relative tolerance of the final shot's integration, per Taylor step. The connection serves
 /// Monte Carlo sampling, where a relative error of 10⁻⁵ in a density is far below the noise, and
@@ -321,7 +323,7 @@ impl Connector {
 
 /// [`Connector::connect_along`], starting from the tabulated [`start_parameter`] where `tables`
 /// are given and the way's table covers the ends, else from [`guessed_parameter`].
-pub(super) fn solve(
+fn solve(
     metric: &Schwarzschild,
     x: [f64; 3],
     y: [f64; 3],
@@ -553,7 +555,7 @@ fn slope_scale(mass: f64, ux: f64) -> f64 {
 /// The parameter each way is shot, guessed and tabulated by, scale-free in `M`: the short way
 /// by `Ms`, `M` times the start slope of (1); the long way by `ln ε`, where
 /// `sin ψ = sin ψ_c (1 + ε)`, in which the sweep is nearly linear near the photon sphere.
-pub(super) fn start_parameter(way: Way, mass: f64, ux: f64, psi: f64) -> f64 {
+fn start_parameter(way: Way, mass: f64, ux: f64, psi: f64) -> f64 {
     match way {
         Way::Short => -mass * slope_scale(mass, ux) / psi.tan(),
         Way::Long => (psi.sin() / critical_sin(mass, ux) - 1.0).ln(),
@@ -581,7 +583,7 @@ fn inward_slope(mass: f64, ux: f64, sin: f64) -> f64 {
 /// `S(u) = 2[artanh √(2M(u + 1/6M)) − artanh √(1/3)]` (the critical orbit's integral, since
 /// `1/b_c² − u² + 2Mu³ = 2M(u − 1/3M)²(u + 1/6M)`); an end inside the photon sphere has no such
 /// limit, and the guess is a little off critical.
-pub(super) fn guessed_parameter(way: Way, mass: f64, ux: f64, uy: f64, cos: f64, sin: f64, sweep: f64) -> f64 {
+fn guessed_parameter(way: Way, mass: f64, ux: f64, uy: f64, cos: f64, sin: f64, sweep: f64) -> f64 {
     match way {
         Way::Short => mass * first_guess(mass, ux, uy, cos, sin),
         Way::Long => {

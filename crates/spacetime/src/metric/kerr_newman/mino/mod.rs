@@ -53,8 +53,8 @@
 //! straight line is a harmonic oscillation (`u = sin(bλ)/b`-like), which a series resolves
 //! in steps of a good part of a radian where Dormand–Prince 5(4) took a tenth.
 
-use super::taylor::{self, product, product_without_first, square_from};
-use super::{Failure, Fate, Integrator, Interpolant, RayStep, RayTracer, State, Trace, TraceSettings, Visit};
+use crate::geodesic::taylor::{self, product, product_without_first, square_from};
+use crate::geodesic::{Failure, Fate, Integrator, Interpolant, RayStep, RayTracer, State, Trace, TraceSettings, Visit};
 use crate::metric::{KerrNewman, KerrSchild};
 use crate::tensor::{Covector4, Vector4};
 
