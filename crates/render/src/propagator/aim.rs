@@ -6,9 +6,7 @@
 use super::Propagator;
 use crate::geometry::Vec3;
 use spacetime::geodesic::aim::{aim, AimSettings};
-use spacetime::metric::schwarzschild::connect::Way;
-use spacetime::geodesic::plane::PlaneMetric;
-use spacetime::geodesic::plane::{plane_aim, PlaneAimSettings, Side};
+use spacetime::geodesic::plane::{plane_aim, PlaneAimSettings, PlaneMetric, Side, Way};
 use spacetime::geodesic::{Integrator, TraceSettings};
 use spacetime::metric::{LocalFrame, Metric, OwnStepper, Tracers};
 use spacetime::{Region, Tetrad};

@@ -31,7 +31,7 @@ use crate::integrator::stats::PathStats;
 use crate::propagator::Arrival;
 use crate::sampling::Sampler;
 use crate::spectrum::Colour;
-use spacetime::metric::schwarzschild::connect::Way;
+use spacetime::geodesic::plane::Way;
 
 /// A BSDF-sampled ray is the aimed one when their start directions differ by less than this
 /// many chord tolerances ε per unit distance between the ends: the hit it found lies within ~ε

@@ -41,7 +41,8 @@ use crate::integrator::stats::PathStats;
 use crate::propagator::{Arrival, Propagator};
 use crate::sampling::Sampler;
 use crate::spectrum::Colour;
-use spacetime::metric::schwarzschild::connect::{short_way_arrives_behind, Connection, Way, Waypoints};
+use spacetime::geodesic::plane::Way;
+use spacetime::metric::schwarzschild::connect::{short_way_arrives_behind, Connection, Waypoints};
 use std::f64::consts::PI;
 
 /// How fast the probability of trying the long way falls with the azimuth it sweeps beyond π

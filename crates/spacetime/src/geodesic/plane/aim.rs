@@ -58,7 +58,6 @@
 
 use super::PlaneMetric;
 use crate::geodesic::dopri5;
-use crate::metric::schwarzschild::connect::Way;
 use crate::tensor::{dot3, norm3, normalize3, scale3};
 use std::f64::consts::PI;
 
@@ -72,6 +71,31 @@ const MAX_STEPS: u32 = 2_000;
 /// Relative step of the central difference for `G_u`: its truncation (~h²) and rounding
 /// (~10⁻¹⁶/h) errors are both near 10⁻¹⁰, far below what the density needs.
 const DIFFERENCE_STEP: f64 = 1e-5;
+
+/// Which of the two rays that go round the centre less than once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Way {
+    /// Sweeping `Δφ ≤ π`.
+    Short,
+    /// Sweeping `2π − Δφ ≥ π` the other way round.
+    Long,
+}
+
+impl Way {
+    pub const BOTH: [Way; 2] = [Way::Short, Way::Long];
+
+    /// The way a ray that swept `swept` radians about the centre went, if it went round less than
+    /// once.
+    pub fn of_sweep(swept: f64) -> Option<Way> {
+        if swept <= PI {
+            Some(Way::Short)
+        } else if swept < 2.0 * PI {
+            Some(Way::Long)
+        } else {
+            None
+        }
+    }
+}
 
 /// How a [`plane_aim`] is taken.
 #[derive(Clone, Copy, Debug, PartialEq)]

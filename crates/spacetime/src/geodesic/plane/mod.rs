@@ -25,7 +25,7 @@ use std::f64::consts::PI;
 
 mod aim;
 
-pub use aim::{plane_aim, PlaneAim, PlaneAimSettings, Side};
+pub use aim::{plane_aim, PlaneAim, PlaneAimSettings, Side, Way};
 
 /// A static, spherically symmetric metric reduced to the plane of a ray. `u` is the inverse
 /// chart radius, `'` is `d/dφ`, and the photon's energy is 1 so `b = L/E = L`.

@@ -58,12 +58,12 @@
 //! which is `1/d²` in flat space (`J = sin φ`, law of sines).
 
 use super::binet_taylor;
-use crate::geodesic::plane::{PlaneAxes, PlaneMetric};
+use crate::geodesic::plane::{PlaneAxes, PlaneMetric, Way};
 use crate::geodesic::tangent_triangle::tangent_triangle;
 use crate::metric::Schwarzschild;
 use crate::tensor::{cross3, dot3, norm3, normalize3, scale3};
-use std::f64::consts::PI;
 use start_table::StartTables;
+use std::f64::consts::PI;
 use std::sync::Arc;
 
 mod start_table;
@@ -101,31 +101,6 @@ const MAX_ITERATIONS: u32 = 100;
 /// this cosine: ten times the error of the direction it is judged by.
 const FACING_MARGIN: f64 = 1e-2;
 const MAX_STEPS: u32 = 10_000;
-
-/// Which of the two rays that go round the centre less than once.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Way {
-    /// Sweeping `Δφ ≤ π`.
-    Short,
-    /// Sweeping `2π − Δφ ≥ π` the other way round.
-    Long,
-}
-
-impl Way {
-    pub const BOTH: [Way; 2] = [Way::Short, Way::Long];
-
-    /// The way a ray that swept `swept` radians about the centre went, if it went round less than
-    /// once.
-    pub fn of_sweep(swept: f64) -> Option<Way> {
-        if swept <= PI {
-            Some(Way::Short)
-        } else if swept < 2.0 * PI {
-            Some(Way::Long)
-        } else {
-            None
-        }
-    }
-}
 
 /// A ray from `x` to `y` and its density.
 #[derive(Clone, Copy, Debug, PartialEq)]
