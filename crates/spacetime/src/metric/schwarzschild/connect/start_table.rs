@@ -12,7 +12,8 @@
 //! way and 0.2 s the long way), the correction leaves a miss that the first, fine, shot takes
 //! out.
 
-use super::{guessed_parameter, solve, start_parameter, Way, Waypoints};
+use super::guess::{guessed_parameter, start_parameter};
+use super::{solve, Way, Waypoints};
 use crate::metric::Schwarzschild;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
