@@ -46,10 +46,10 @@
 //!
 //! **Steps.** The right-hand side is polynomial in `(u, u', n, v)` but for the one quotient in
 //! `G`, so the adaptive tracer takes Taylor steps: the series of the solution about the step's
-//! start follows from recurrences ([`Recurrence`](series::Recurrence); Jorba & Zou 2005, "A
-//! software package for the numerical integration of ODEs by means of high-order Taylor
-//! methods", Exp. Math. 14), its last two terms set the step's length
-//! ([`MinoTracer::taylor_step`]), and the polynomial
+//! start follows from recurrences (`Recurrence`, in `series`; Jorba & Zou 2005, "A software
+//! package for the numerical integration of ODEs by means of high-order Taylor methods", Exp.
+//! Math. 14), its last two terms set the step's length ([`MinoTracer::taylor_step`]), and the
+//! polynomial
 //! is the ray anywhere inside the step, as accurate there as at the end. In `(u, n)` even a
 //! straight line is a harmonic oscillation (`u = sin(bλ)/b`-like), which a series resolves
 //! in steps of a good part of a radian where Dormand–Prince 5(4) took a tenth.

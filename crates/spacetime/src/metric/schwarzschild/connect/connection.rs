@@ -34,8 +34,9 @@ const MAX_WAYPOINTS: usize = 24;
 
 /// Points along a connecting ray, in its plane (basis `x̂`, `e₂`), where the last shot's Taylor
 /// steps ended, less than a radian of azimuth apart: the solver's scratch, kept by the caller
-/// beside the [`Connection`] it last filled them for ([`Connector::connect_along`]), so that a connection
-/// does not carry (and copy) them where its single triangle settles its visibility.
+/// beside the [`Connection`] it last filled them for
+/// ([`Connector::connect_along`](super::Connector::connect_along)), so that a connection does not
+/// carry (and copy) them where its single triangle settles its visibility.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Waypoints {
     pub(super) xh: [f64; 3],
