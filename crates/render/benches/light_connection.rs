@@ -11,7 +11,8 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use render::geometry::Vec3;
 use render::propagator::Propagator;
 use render::settings::Intersection;
-use spacetime::geodesic::connect::{Way, Waypoints};
+use spacetime::geodesic::plane::Way;
+use spacetime::metric::schwarzschild::connect::Waypoints;
 use spacetime::{Region, Spacetime};
 use std::hint::black_box;
 

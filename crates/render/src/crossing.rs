@@ -9,7 +9,7 @@
 //!
 //! Which pieces hold a root follows from the heights of their ends alone where rays bend towards
 //! the centre (Schwarzschild): within a sweep below π, a ray that has crossed a plane to the
-//! centre's side cannot come back to it (`spacetime::geodesic::connect::short_way_arrives_behind`,
+//! centre's side cannot come back to it (`spacetime::metric::schwarzschild::connect::short_way_arrives_behind`,
 //! a Sturm comparison). So a piece with its ends on opposite sides crosses exactly once, a piece
 //! with both ends on the far side from the centre never does, and only a piece with both ends on
 //! the centre's side may cross twice (poke out and come back), which the caller settles by

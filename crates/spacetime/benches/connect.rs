@@ -3,7 +3,8 @@
 //! its 12 × 8 × 16 box around a hole of mass 0.3 at the origin, the short way and the long way.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use spacetime::geodesic::connect::{Connector, Way};
+use spacetime::geodesic::plane::Way;
+use spacetime::metric::schwarzschild::connect::Connector;
 use spacetime::tensor::norm3;
 use spacetime::Schwarzschild;
 use std::hint::black_box;

@@ -9,7 +9,7 @@
 //! (docs/perf-journal.md, session 18).
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use spacetime::geodesic::binet_taylor::OrbitStep;
+use spacetime::metric::schwarzschild::binet_taylor::OrbitStep;
 use std::hint::black_box;
 
 const MASS: f64 = 0.3;

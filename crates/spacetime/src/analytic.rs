@@ -1,4 +1,7 @@
-//! Exact results that the integrators are checked against (physics notes, "Analytic results").
+//! Exact results that the integrators are checked against: answers for tests, compiled only for
+//! them (this crate's unit tests, and the `test-answers` feature that the tests of this crate,
+//! the renderer and the binary turn on as a dev-dependency), not part of the library a renderer
+//! uses.
 //!
 //! Bending angles are written as integrals whose flat-space part is subtracted analytically, so
 //! that tiny weak-field angles keep full relative precision, and evaluated by adaptive quadrature.

@@ -1,5 +1,8 @@
 //! The standard geodesic workload: a pinhole camera's fan of rays around a Schwarzschild hole,
-//! as used by `nullpath bench geodesics` and the criterion benchmarks.
+//! as used by `nullpath bench geodesics` and the criterion benchmarks. A benchmark's workload,
+//! not physics: compiled only with the `bench-workload` feature, which the binary and this
+//! crate's benchmarks turn on. It lives here, not beside `nullpath bench`, because both of them
+//! time it and benchmarks cannot reach into a binary.
 
 use crate::geodesic::plane::{trace_plane, PlaneStart};
 use crate::geodesic::{HamiltonianTracer, State, TraceSettings, Visit};

@@ -8,8 +8,10 @@
 //! `p_μ`. Rays are traced *backwards* from the camera: the traced momentum is past-directed, and the
 //! photon it describes travels the other way. Nothing here knows about rendering.
 
+#[cfg(any(test, feature = "test-answers"))]
 pub mod analytic;
 pub mod disk;
+#[cfg(feature = "bench-workload")]
 pub mod fan;
 pub mod geodesic;
 pub mod metric;

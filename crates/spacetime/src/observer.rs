@@ -1,7 +1,8 @@
 //! Observers and their local orthonormal frames (tetrads), and the conversion between what an
 //! observer measures (a direction and an energy) and a null covariant momentum.
 //!
-//! Cameras, surfaces and lights all live in such frames (physics notes, "Local frames").
+//! Cameras, surfaces and lights all live in such frames (`docs/physics.md`, "Local frames and the
+//! time orientation of backward rays").
 
 use crate::metric::Metric;
 use crate::tensor::{contract, quadratic, Covector4, Matrix4, Vector4};

@@ -3,8 +3,8 @@
 
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
-use spacetime::geodesic::connect::{Connection, Connector, Way, Waypoints};
-use spacetime::geodesic::plane::{trace_plane, PlaneStart, PlaneStep};
+use spacetime::geodesic::plane::{trace_plane, PlaneStart, PlaneStep, Way};
+use spacetime::metric::schwarzschild::connect::{Connection, Connector, Waypoints};
 use spacetime::tensor::{cross3, dot3, norm3, normalize3};
 use spacetime::{Integrator, Region, Schwarzschild, TraceSettings, Visit};
 

@@ -1,14 +1,12 @@
 //! Light rays aimed between two points of any curved spacetime, in the renderer's world and
 //! local frames: the generic light connector. Static, spherically symmetric spacetimes aim in
-//! the ray's plane, one unknown ([`spacetime::geodesic::plane_aim`]); every other one in 4-D,
+//! the ray's plane, one unknown ([`spacetime::geodesic::plane`]); every other one in 4-D,
 //! two unknowns with the ray bundle ([`spacetime::geodesic::aim`]).
 
 use super::Propagator;
 use crate::geometry::Vec3;
 use spacetime::geodesic::aim::{aim, AimSettings};
-use spacetime::geodesic::connect::Way;
-use spacetime::geodesic::plane::PlaneMetric;
-use spacetime::geodesic::plane_aim::{plane_aim, PlaneAimSettings, Side};
+use spacetime::geodesic::plane::{plane_aim, PlaneAimSettings, PlaneMetric, Side, Way};
 use spacetime::geodesic::{Integrator, TraceSettings};
 use spacetime::metric::{LocalFrame, Metric, OwnStepper, Tracers};
 use spacetime::{Region, Tetrad};

@@ -4,7 +4,8 @@
 
 use super::Propagator;
 use crate::geometry::Vec3;
-use spacetime::geodesic::connect::{Connection, Way, Waypoints};
+use spacetime::geodesic::plane::Way;
+use spacetime::metric::schwarzschild::connect::{Connection, Waypoints};
 
 impl Propagator {
     /// Whether [`Propagator::connect`] can join points by geodesics here: where the spacetime

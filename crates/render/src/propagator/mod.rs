@@ -55,9 +55,9 @@ use crate::settings::Intersection;
 use crate::shape::SurfaceHit;
 use crate::world::World;
 use leaving::straight;
-use spacetime::geodesic::connect::Connector;
 use spacetime::geodesic::plane::PlaneMetric;
 use spacetime::geodesic::{Integrator, TraceSettings};
+use spacetime::metric::schwarzschild::connect::Connector;
 use spacetime::metric::{Metric, OwnStepper, Tracers};
 use spacetime::{Region, Spacetime, Tetrad};
 use start::OriginFrame;
@@ -107,7 +107,7 @@ pub struct Propagator {
     /// The spacetime's light connector, where it has one and rays are traced by chords.
     connector: Option<Connector>,
     /// Whether light is aimed in the ray's plane where the spacetime is static and spherically
-    /// symmetric ([`spacetime::geodesic::plane_aim`]), rather than in 4-D.
+    /// symmetric ([`spacetime::geodesic::plane::plane_aim`]), rather than in 4-D.
     aims_in_plane: bool,
     /// The 4-D tracer's settings; its steps move at most half the distance to the centre.
     trace: TraceSettings,

@@ -1,29 +1,28 @@
-//! Null geodesics: integrators, the step-by-step tracer and the fate of a ray.
+//! Null geodesics: the generic machinery of every tracer. Integrators (RK4, Dormand–Prince 5(4)
+//! with its dense output, Taylor-series helpers), the step-by-step tracer and the fate of a ray,
+//! ray bundles, and aiming a ray at a point.
 //!
 //! [`HamiltonianTracer`] integrates Hamilton's equations in 4-D for any [`Metric`];
-//! [`plane`] integrates spherically symmetric spacetimes in the ray's own plane (exactly,
-//! cheaper, with no poles). Both hand every accepted step to the caller, who tests its chord
-//! against a scene and may stop the ray. [`connect`] finds the ray between two given points
-//! of Schwarzschild spacetime and its bundle density; [`plane_aim`] for any static, spherically
-//! symmetric one in the ray's plane; [`aim`] does so for any metric, with the
-//! ray [`bundle`].
+//! [`plane`] integrates static, spherically symmetric spacetimes in the ray's own plane (exactly,
+//! cheaper, with no poles) and aims rays there ([`plane::plane_aim`]). Both hand every accepted
+//! step to the caller, who tests its chord against a scene and may stop the ray. [`aim`] finds
+//! the ray between two given points for any metric, with the ray [`bundle`].
+//!
+//! Tracers and solvers that serve one metric live beside it: Kerr–Newman's Mino-time stepper in
+//! [`crate::metric::kerr_newman::mino`], Schwarzschild's light connector in
+//! [`crate::metric::schwarzschild::connect`].
 //!
 //! [`Metric`]: crate::metric::Metric
 
 pub mod aim;
-pub mod binet_taylor;
 pub mod bundle;
-pub mod connect;
 pub mod dopri5;
 mod hamiltonian;
 mod interpolant;
-pub mod mino;
 pub mod plane;
-pub mod plane_aim;
 pub mod rk4;
-mod start_table;
 pub mod tangent_triangle;
-mod taylor;
+pub(crate) mod taylor;
 
 pub use hamiltonian::{angular_momentum_z, energy, trace, Flow, HamiltonianStep, HamiltonianTracer, Ray};
 pub use interpolant::Interpolant;
@@ -64,7 +63,7 @@ pub enum Integrator {
     Rk4 { step: f64 },
     /// Adaptive steps at relative tolerance `rtol`: Dormand–Prince 5(4) with error control, or
     /// Taylor series whose truncation is held to it where a stepper takes them (the in-plane
-    /// orbit, [`plane`]; Kerr's family in Mino time, [`mino`]).
+    /// orbit, [`plane`]; Kerr's family in Mino time, [`mino`](crate::metric::kerr_newman::mino)).
     Adaptive { rtol: f64 },
 }
 

@@ -1,9 +1,9 @@
 //! A plane arc that bends one way and turns by less than π lies on one side of its chord and of
 //! the tangent lines at both its ends, so inside the triangle they bound. In world coordinates a
 //! Schwarzschild ray bends towards the centre all along (its curvature is `3Mu⁵/(u² + u'²)^{3/2}`,
-//! [`connect`](super::connect) equation (1)), so every piece of it that sweeps at most π round
-//! the centre is held by such a triangle: nothing that stays clear of the triangle can meet that
-//! piece of the ray, which tests its visibility without tracing it.
+//! [`connect`](crate::metric::schwarzschild::connect) equation (1)), so every piece of it that
+//! sweeps at most π round the centre is held by such a triangle: nothing that stays clear of the
+//! triangle can meet that piece of the ray, which tests its visibility without tracing it.
 //!
 //! The turning angle is the sweep `Δφ` plus the change of the tangent's angle from the outward
 //! radial direction, which stays in `(0, π)` since the ray sweeps one way. Over a sweep `Δφ ≤ π`

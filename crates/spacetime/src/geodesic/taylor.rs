@@ -1,5 +1,6 @@
-//! Pieces shared by the Taylor-series steppers ([`super::binet_taylor`] for the Schwarzschild
-//! orbit, [`super::mino`] for Kerr's family): the step length from the last two coefficients
+//! Pieces shared by the Taylor-series steppers ([`crate::metric::schwarzschild::binet_taylor`]
+//! for the Schwarzschild orbit, [`crate::metric::kerr_newman::mino`] for Kerr's family): the step
+//! length from the last two coefficients
 //! (Jorba & Zou 2005, "A software package for the numerical integration of ODEs by means of
 //! high-order Taylor methods", Exp. Math. 14, §3.2.1), the Cauchy products `(a∗b)_N = Σ aᵢb_{N−i}`
 //! of their recurrences (ibid. §2) and the evaluation of the polynomial. The products take
@@ -8,7 +9,7 @@
 
 /// `(a∗b)_N − a₀b_N = Σ aᵢb_{N−i}` over `0 < i ≤ N`, the newest `b` (`a₁b_{N−1}`) last.
 #[inline(always)]
-pub(super) fn product_without_first<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn product_without_first<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
     let mut sum = 0.0;
     for i in (1..N + 1).rev() {
         sum += a[i] * b[N - i];
@@ -18,7 +19,7 @@ pub(super) fn product_without_first<const N: usize>(a: &[f64], b: &[f64]) -> f64
 
 /// `(a∗b)_N = Σ aᵢb_{N−i}` over `0 ≤ i ≤ N`.
 #[inline(always)]
-pub(super) fn product<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn product<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
     product_without_first::<N>(a, b) + a[0] * b[N]
 }
 
@@ -26,7 +27,7 @@ pub(super) fn product<const N: usize>(a: &[f64], b: &[f64]) -> f64 {
 /// twice the products with `FROM ≤ i < N − i`, plus the middle square where `N` is even, the
 /// newest (`c_FROM c_{N−FROM}`) last. `FROM = 0` is the whole square.
 #[inline(always)]
-pub(super) fn square_from<const FROM: usize, const N: usize>(c: &[f64]) -> f64 {
+pub(crate) fn square_from<const FROM: usize, const N: usize>(c: &[f64]) -> f64 {
     let mut sum = if N % 2 == 0 { 0.5 * c[N / 2] * c[N / 2] } else { 0.0 };
     for i in (FROM..N.div_ceil(2)).rev() {
         sum += c[i] * c[N - i];
@@ -38,7 +39,7 @@ pub(super) fn square_from<const FROM: usize, const N: usize>(c: &[f64]) -> f64 {
 /// and `L = B + 1` the orders of the last two coefficients): which root is smaller is told by
 /// integer powers, so only one root is taken.
 #[inline]
-pub(super) fn shorter_root<const B: i32, const L: i32>(before: f64, last: f64) -> f64 {
+pub(crate) fn shorter_root<const B: i32, const L: i32>(before: f64, last: f64) -> f64 {
     const { assert!(L == B + 1, "the last two orders") };
     if before.powi(L) < last.powi(B) {
         root::<B>(before)
@@ -64,7 +65,7 @@ fn root<const N: i32>(x: f64) -> f64 {
 
 /// A polynomial and its derivative at `h`.
 #[inline]
-pub(super) fn value_and_slope<const N: usize>(c: &[f64; N], h: f64) -> (f64, f64) {
+pub(crate) fn value_and_slope<const N: usize>(c: &[f64; N], h: f64) -> (f64, f64) {
     (value(c, h), slope(c, h))
 }
 
@@ -73,7 +74,7 @@ pub(super) fn value_and_slope<const N: usize>(c: &[f64; N], h: f64) -> (f64, f64
 /// `h`, whose dependent multiply–adds, not their count, are what a step's points wait for
 /// (measured with [`slope`]: docs/perf-journal.md, session 17).
 #[inline]
-pub(super) fn value<const N: usize>(c: &[f64; N], h: f64) -> f64 {
+pub(crate) fn value<const N: usize>(c: &[f64; N], h: f64) -> f64 {
     let z = h * h;
     let (mut even, mut odd) = (0.0, 0.0);
     for n in (0..N).rev() {
@@ -89,7 +90,7 @@ pub(super) fn value<const N: usize>(c: &[f64; N], h: f64) -> f64 {
 /// The derivative of a polynomial at `h`, as [`value`] evaluates it: `Σ n cₙ hⁿ⁻¹`, its even
 /// and odd terms apart.
 #[inline]
-pub(super) fn slope<const N: usize>(c: &[f64; N], h: f64) -> f64 {
+pub(crate) fn slope<const N: usize>(c: &[f64; N], h: f64) -> f64 {
     let z = h * h;
     let (mut even, mut odd) = (0.0, 0.0);
     for n in (1..N).rev() {

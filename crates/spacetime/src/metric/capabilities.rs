@@ -10,9 +10,9 @@
 use super::spin_twin::SpinTwin;
 use super::{Metric, Region};
 use crate::disk::CircularOrbits;
-use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
 use crate::geodesic::{RayTracer, State, TraceSettings};
+use crate::metric::schwarzschild::connect::Connector;
 use crate::observer::Tetrad;
 
 /// The frame of the local observer (static where one exists, else the chart's normal observer)
@@ -109,7 +109,7 @@ pub enum Forwards {
 
 /// A metric that steps its rays with a stepper of its own, cheaper than the 4-D tracer's and as
 /// accurate at the same settings (Kerr's family: Mino time with the constants of motion,
-/// [`crate::geodesic::mino`]). Its steps and states are in the metric's own chart.
+/// [`crate::metric::kerr_newman::mino`]). Its steps and states are in the metric's own chart.
 pub trait OwnStepper: Metric {
     type Tracer: RayTracer;
     /// The tracer of the ray from `start` with `settings`.

@@ -14,8 +14,8 @@
 use super::capabilities::{radial_frame, rest_on_chart, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region, WorldPoint};
 use crate::disk::CircularOrbits;
-use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
+use crate::metric::schwarzschild::connect::Connector;
 use crate::tensor::{normalize3, Covector4, Matrix4, Vector4};
 
 /// Ellis wormhole.

@@ -12,13 +12,13 @@
 use super::capabilities::{
     tetrad_frame, tetrad_lapse, Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers,
 };
+use super::kerr_newman::mino::MinoTracer;
 use super::kerr_schild::{hamilton_rhs, KerrSchild, KerrSchildPoint};
+use super::schwarzschild::connect::Connector;
 use super::spin_twin::SpinTwin;
 use super::user::Scalar;
 use super::{KerrNewman, Metric, Region};
 use crate::disk::CircularOrbits;
-use crate::geodesic::connect::Connector;
-use crate::geodesic::mino::MinoTracer;
 use crate::geodesic::{State, TraceSettings};
 use crate::observer::Tetrad;
 use crate::tensor::{Covector4, Vector4};

@@ -3,8 +3,8 @@
 use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region};
 use crate::disk::CircularOrbits;
-use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
+use crate::metric::schwarzschild::connect::Connector;
 use crate::tensor::{Covector4, Matrix4, Vector4, ETA};
 
 /// Minkowski spacetime.

@@ -16,8 +16,8 @@ use super::capabilities::{
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
 use crate::disk::CircularOrbits;
-use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
+use crate::metric::schwarzschild::connect::Connector;
 use crate::tensor::{norm3, spatial, Vector4};
 
 /// Reissner–Nordström spacetime.

@@ -39,7 +39,7 @@ use super::expression::{atan2, Expression};
 use super::user::{MetricFunction, Scalar, UserMetric};
 use super::{Metric, ParameterError, Region};
 use crate::disk::CircularOrbits;
-use crate::geodesic::connect::Connector;
+use crate::metric::schwarzschild::connect::Connector;
 use crate::observer::Tetrad;
 use crate::tensor::{invert, Matrix4, Vector4};
 use std::sync::Arc;

@@ -1,6 +1,6 @@
 //! Direct light in any curved spacetime without a connector of its own: the ray from the
 //! shading point to a point sampled on a light is aimed by Newton's method on its start
-//! direction ([`Propagator::aim`]: `spacetime::geodesic::plane_aim` in static, spherically
+//! direction ([`Propagator::aim`]: `spacetime::geodesic::plane::plane_aim` in static, spherically
 //! symmetric spacetimes, `spacetime::geodesic::aim` in others), and its density in solid angle
 //! at the shading point follows from the light's area density through the ray bundle and the
 //! probability of trying the ray's way round:
@@ -31,7 +31,7 @@ use crate::integrator::stats::PathStats;
 use crate::propagator::Arrival;
 use crate::sampling::Sampler;
 use crate::spectrum::Colour;
-use spacetime::geodesic::connect::Way;
+use spacetime::geodesic::plane::Way;
 
 /// A BSDF-sampled ray is the aimed one when their start directions differ by less than this
 /// many chord tolerances ε per unit distance between the ends: the hit it found lies within ~ε

@@ -3,7 +3,7 @@
 //!
 //! Two rays join them, one each way round the hole: the short way (azimuth `Δφ ≤ π`) and the
 //! long way (`2π − Δφ`, past the photon sphere), found by shooting in the plane of `x`, `y` and
-//! the centre (`spacetime::geodesic::connect`). They are two sampling strategies: the short way
+//! the centre (`spacetime::metric::schwarzschild::connect`). They are two sampling strategies: the short way
 //! is tried for every light point, the long way at random, the more often the closer the point
 //! lies to across the hole ([`way_probability`]). Each one's density
 //! in solid angle at `x` follows from the area density on the light through its ray bundle and
@@ -41,7 +41,8 @@ use crate::integrator::stats::PathStats;
 use crate::propagator::{Arrival, Propagator};
 use crate::sampling::Sampler;
 use crate::spectrum::Colour;
-use spacetime::geodesic::connect::{short_way_arrives_behind, Connection, Way, Waypoints};
+use spacetime::geodesic::plane::Way;
+use spacetime::metric::schwarzschild::connect::{short_way_arrives_behind, Connection, Waypoints};
 use std::f64::consts::PI;
 
 /// How fast the probability of trying the long way falls with the azimuth it sweeps beyond π

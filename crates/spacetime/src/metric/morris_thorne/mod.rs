@@ -23,8 +23,8 @@ pub use dneg::Dneg;
 use super::capabilities::{radial_frame, rest_on_chart, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region, WorldPoint};
 use crate::disk::CircularOrbits;
-use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
+use crate::metric::schwarzschild::connect::Connector;
 use crate::tensor::{norm3, normalize3, Matrix4, Vector4};
 
 /// The areal radius of a wormhole at proper radial distance `l` from its throat's middle.

@@ -2,7 +2,7 @@
 //! density: the shooting problem behind next-event estimation along geodesics.
 //!
 //! The centre, the start `x` and the end `y` span one plane, and every ray from `x` to `y` lies
-//! in it (physics notes, "Charts without trouble"). There the ray leaves `x` at angle `ψ` from the
+//! in it (`docs/physics.md`, "Charts of each metric"). There the ray leaves `x` at angle `ψ` from the
 //! outward radial direction, measured by the static observer, and obeys the Binet equation
 //!
 //! ```text
@@ -58,13 +58,20 @@
 //! which is `1/d²` in flat space (`J = sin φ`, law of sines).
 
 use super::binet_taylor;
-use super::plane::{PlaneAxes, PlaneMetric};
-use super::start_table::StartTables;
-use super::tangent_triangle::tangent_triangle;
+use crate::geodesic::plane::{PlaneAxes, Way};
 use crate::metric::Schwarzschild;
 use crate::tensor::{cross3, dot3, norm3, normalize3, scale3};
+use connection::{world_tangent, Ends, StartDirection};
+use guess::{critical_sin, first_guess, guessed_parameter, inward_slope, long_start_slope, slope_scale};
+use start_table::StartTables;
 use std::f64::consts::PI;
 use std::sync::Arc;
+
+mod connection;
+mod guess;
+mod start_table;
+
+pub use connection::{Connection, Waypoints};
 
 /// Relative tolerance of the final shot's integration, per Taylor step. The connection serves
 /// Monte Carlo sampling, where a relative error of 10⁻⁵ in a density is far below the noise, and
@@ -73,8 +80,9 @@ use std::sync::Arc;
 /// on the tests' bundles (M = 1, a long way from r = 10) the largest miss is 8·10⁻⁶ r at 10⁻⁷
 /// (2.7·10⁻⁷ r at 3·10⁻⁸, 1.35·10⁻⁷ r at 10⁻⁸, where Newton's own stopping term, `UTOL`, takes
 /// over). The short way round stays well off the photon sphere and meets the same bounds at
-/// 10⁻⁶ (misses seen up to 8·10⁻⁶ r). On the black-hole room, 10⁻⁶ and 10⁻⁷ instead of 10⁻⁷ and
-/// 10⁻⁸ take 14 % fewer instructions in the render's solver and 16 % in the tables' build.
+/// 10⁻⁶ (misses seen up to 8·10⁻⁶ r). The looser pair, 10⁻⁶ and 10⁻⁷ rather than 10⁻⁷ and
+/// 10⁻⁸, takes fewer Taylor steps in the render's solver and in the tables' build
+/// (docs/perf-journal.md).
 const fn final_rtol(way: Way) -> f64 {
     match way {
         Way::Short => 1e-6,
@@ -99,170 +107,6 @@ const MAX_ITERATIONS: u32 = 100;
 /// this cosine: ten times the error of the direction it is judged by.
 const FACING_MARGIN: f64 = 1e-2;
 const MAX_STEPS: u32 = 10_000;
-
-/// Which of the two rays that go round the centre less than once.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Way {
-    /// Sweeping `Δφ ≤ π`.
-    Short,
-    /// Sweeping `2π − Δφ ≥ π` the other way round.
-    Long,
-}
-
-impl Way {
-    pub const BOTH: [Way; 2] = [Way::Short, Way::Long];
-
-    /// The way a ray that swept `swept` radians about the centre went, if it went round less than
-    /// once.
-    pub fn of_sweep(swept: f64) -> Option<Way> {
-        if swept <= PI {
-            Some(Way::Short)
-        } else if swept < 2.0 * PI {
-            Some(Way::Long)
-        } else {
-            None
-        }
-    }
-}
-
-/// A ray from `x` to `y` and its density.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Connection {
-    /// Unit direction the ray leaves `x` in, in the static frame at `x` (axes along the world's).
-    pub start: [f64; 3],
-    /// Unit world-coordinate tangent at `x`.
-    pub start_tangent: [f64; 3],
-    /// Unit direction of travel at `y`, in the static frame at `y`.
-    pub end: [f64; 3],
-    /// Unit world-coordinate tangent at `y` (what a world-coordinate surface is projected along).
-    pub end_tangent: [f64; 3],
-    /// `dΩ_x/dA⊥`: solid angle at `x` per world-coordinate area of the beam cross-section at `y`
-    /// perpendicular to `end_tangent`, equation (3). A surface with world unit normal `n` has
-    /// `dΩ_x/dA = |n · end_tangent| · solid_angle_per_area`.
-    pub solid_angle_per_area: f64,
-    /// Azimuth swept from `x` to `y`: `Δφ ∈ (0, π]` the short way, `2π − Δφ` the long way.
-    pub swept: f64,
-    /// Unit normal of the ray's plane, the axis it sweeps round.
-    pub axis: [f64; 3],
-}
-
-/// Most points kept along a ray between its ends; a ray that needs more keeps none.
-const MAX_WAYPOINTS: usize = 24;
-
-/// Points along a connecting ray, in its plane (basis `x̂`, `e₂`), where the last shot's Taylor
-/// steps ended, less than a radian of azimuth apart: the solver's scratch, kept by the caller
-/// beside the [`Connection`] it last filled them for ([`Connector::connect_along`]), so that a connection
-/// does not carry (and copy) them where its single triangle settles its visibility.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Waypoints {
-    xh: [f64; 3],
-    e2: [f64; 3],
-    /// Newton's last step in the start slope `s`, taken without shooting again: the kept points
-    /// follow it to first order (`∂u/∂s = J`, `∂u'/∂s = J'`).
-    step: f64,
-    /// States kept, or `MAX_WAYPOINTS + 1` where there were too many to keep.
-    count: usize,
-    /// The shot's `(φ, u, u', J, J')` at the ends of its steps, before the last.
-    states: [[f64; 5]; MAX_WAYPOINTS],
-}
-
-impl Default for Waypoints {
-    fn default() -> Self {
-        Self { xh: [0.0; 3], e2: [0.0; 3], step: 0.0, count: 0, states: [[0.0; 5]; MAX_WAYPOINTS] }
-    }
-}
-
-impl Waypoints {
-    fn push(&mut self, phi: f64, y: &[f64; 6]) {
-        if let Some(state) = self.states.get_mut(self.count) {
-            *state = [phi, y[0], y[1], y[2], y[3]];
-        }
-        self.count = (self.count + 1).min(MAX_WAYPOINTS + 1);
-    }
-
-    /// The kept points `(φ, u, u')` of the ray Newton's last step led to.
-    fn points(&self) -> impl Iterator<Item = [f64; 3]> + '_ {
-        let step = self.step;
-        self.states[..self.count.min(MAX_WAYPOINTS)]
-            .iter()
-            .map(move |[phi, u, du, j, dj]| [*phi, u + j * step, du + dj * step])
-    }
-}
-
-impl Connection {
-    /// A triangle `[x, z, y]` that holds the whole ray from `x` to `y`, or `None` where the ray
-    /// goes the long way round or turns by π or more (or too little to place `z`): the ray bends
-    /// towards the centre all along, so the triangle of its chord and end tangents holds it
-    /// ([`tangent_triangle`]), and nothing that stays clear of the triangle can block it.
-    pub fn enclosing_triangle(&self, x: [f64; 3], y: [f64; 3]) -> Option<[[f64; 3]; 3]> {
-        if self.swept > PI {
-            return None;
-        }
-        tangent_triangle(self.axis, (x, self.start_tangent), (y, self.end_tangent))
-    }
-
-    /// Triangles that together hold the ray from `x` to `y`, each the tangent triangle of a piece
-    /// between waypoints, as [`Connection::enclosing_triangle`] bounds the whole short way; `None`
-    /// for a piece that turns too little or too much to bound, and a single `None` where the
-    /// waypoints were not kept. This bounds the long way round too, whose consecutive pieces are
-    /// merged while the merged piece sweeps at most 2 rad and turns at most 45° (`MERGED_SWEEP`,
-    /// `MERGED_TURN_COS`): fewer, still small triangles (it has a dozen waypoints). The short way
-    /// is asked for its pieces only where its one triangle came near something, and there
-    /// merged triangles would mostly come near it again.
-    pub fn enclosing_triangles<'a>(
-        &'a self,
-        waypoints: &'a Waypoints,
-        x: [f64; 3],
-        y: [f64; 3],
-    ) -> impl Iterator<Item = Option<[[f64; 3]; 3]>> + 'a {
-        let (w, axis) = (waypoints, self.axis);
-        let kept = w.count <= MAX_WAYPOINTS;
-        let inner = w.points().map(|p| (p[0], w.world(&p)));
-        let mut knots = std::iter::once((0.0, (x, self.start_tangent)))
-            .chain(inner)
-            .chain(std::iter::once((self.swept, (y, self.end_tangent))))
-            .peekable();
-        let (mut start, merge) = (knots.next(), self.swept > PI);
-        let pieces = std::iter::from_fn(move || {
-            let (phi, knot) = start?;
-            let mut end = knots.next()?;
-            while let Some(&(next_phi, next)) = knots.peek() {
-                if !merge || next_phi - phi > MERGED_SWEEP || dot3(&knot.1, &next.1) < MERGED_TURN_COS {
-                    break;
-                }
-                end = (next_phi, next);
-                knots.next();
-            }
-            start = Some(end);
-            Some(tangent_triangle(axis, knot, end.1))
-        });
-        let none_kept = (!kept).then_some(None);
-        none_kept.into_iter().chain(pieces.take_while(move |_| kept))
-    }
-}
-
-/// Most azimuth a merged piece of [`Connection::enclosing_triangles`] sweeps: below π, which
-/// tangent triangles need.
-const MERGED_SWEEP: f64 = 2.0;
-/// Cosine of the most a merged piece turns, 45°: its tangents then meet within `tan(45°/2)` (0.41)
-/// of its chord's length, so the triangle stays near the ray. (At 60° as many room connections
-/// were cleared without tracing, but more near a ball beside the hole were traced.)
-const MERGED_TURN_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
-
-impl Waypoints {
-    /// World position and unit world tangent of the point `(φ, u, u')`: world coordinates see
-    /// the ray's direction as `(−u', u)` in the radial and azimuthal directions.
-    fn world(&self, &[phi, u, du]: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
-        let axes = PlaneAxes::at(&self.xh, &self.e2, phi);
-        (axes.at_radius(1.0 / u), world_tangent(&axes, u, du))
-    }
-}
-
-/// Unit world tangent of the ray at `(u, u')`, given the plane's directions there: world
-/// coordinates see its direction of travel as `(−u', u)` in the radial and azimuthal directions.
-fn world_tangent(axes: &PlaneAxes, u: f64, du: f64) -> [f64; 3] {
-    axes.along(-du, u)
-}
 
 /// How one shot from `x` ended.
 enum Shot {
@@ -319,9 +163,10 @@ impl Connector {
     }
 }
 
-/// [`Connector::connect_along`], starting from the tabulated [`start_parameter`] where `tables`
-/// are given and the way's table covers the ends, else from [`guessed_parameter`].
-pub(super) fn solve(
+/// [`Connector::connect_along`], starting from the tabulated
+/// [`start_parameter`](guess::start_parameter) where `tables` are given and the way's table
+/// covers the ends, else from [`guessed_parameter`].
+fn solve(
     metric: &Schwarzschild,
     x: [f64; 3],
     y: [f64; 3],
@@ -465,136 +310,6 @@ impl Bracket {
 pub fn short_way_arrives_behind(n: [f64; 3], from: [f64; 3], to: [f64; 3]) -> bool {
     let at = dot3(&n, &to);
     at <= 0.0 && dot3(&n, &from) <= at
-}
-
-/// The direction a ray leaves `x` in: `sin ψ` and `cos ψ`, from the outward radial direction.
-struct StartDirection {
-    sin: f64,
-    cos: f64,
-}
-
-impl StartDirection {
-    /// The direction of start slope `s` of (1): `cot ψ = −s/(u_x/σ_x)`, `ψ ∈ (0, π)`.
-    fn of_slope(s: f64, slope_scale: f64) -> Self {
-        let norm = (slope_scale * slope_scale + s * s).sqrt();
-        Self { sin: slope_scale / norm, cos: -s / norm }
-    }
-}
-
-/// The converged ray's data at both ends.
-struct Ends {
-    xh: [f64; 3],
-    e2: [f64; 3],
-    /// The plane's directions at `y`, and the sine of the sweep.
-    at_y: PlaneAxes,
-    sin_sweep: f64,
-    sweep: f64,
-    start: StartDirection,
-    ux: f64,
-    uy: f64,
-    du: f64,
-    jacobi: f64,
-}
-
-impl Ends {
-    fn connection(&self, metric: &Schwarzschild) -> Option<Connection> {
-        if !(self.jacobi > 0.0) {
-            return None;
-        }
-        // `1/σ = √(1 − 2Mu)`, the static frame's radial scale (the lapse); multiplied in, not
-        // divided by, and where a direction is normalised anyway, onto the other component.
-        let lapse_x = metric.lapse(self.ux);
-        let StartDirection { sin: s_psi, cos: c_psi } = self.start;
-        let start = std::array::from_fn(|i| c_psi * self.xh[i] + s_psi * self.e2[i]);
-        let start_tangent = normalize3(&std::array::from_fn(|i| c_psi * lapse_x * self.xh[i] + s_psi * self.e2[i]));
-        let at_y = &self.at_y;
-        // Static frame: (n_r, n_φ) ∝ (−σ u', u).
-        let end = at_y.along(-self.du, metric.lapse(self.uy) * self.uy);
-        let end_tangent = world_tangent(at_y, self.uy, self.du);
-        // Equation (3), with `1/t_φ = √(u'² + u²)/u` at `y`.
-        let density = s_psi.powi(3) * self.uy * self.uy * (self.du * self.du + self.uy * self.uy).sqrt()
-            / (lapse_x * self.ux * self.jacobi * self.sin_sweep.abs());
-        let (solid_angle_per_area, swept, axis) = (density, self.sweep, cross3(&self.xh, &self.e2));
-        Some(Connection { start, start_tangent, end, end_tangent, solid_angle_per_area, swept, axis })
-    }
-}
-
-/// The start slope `s` of (1) to first order in `M`: with the flat solution
-/// `u₀ = u_x cos φ + s sin φ`, the correction `w'' + w = 3Mu₀²`, `w(0) = w'(0) = 0`, is
-/// `3M[(u_x² + s²)(1 − cos φ)/2 + (u_x² − s²)(cos φ − cos 2φ)/6 + u_x s (2 sin φ − sin 2φ)/3]`,
-/// and `u₀ + w = u_y` at `φ = Δφ` is a quadratic in `s`; its root nearest the flat one. A good
-/// guess saves Newton iterations, each a full integration.
-fn first_guess(mass: f64, ux: f64, uy: f64, cos: f64, sin: f64) -> f64 {
-    let (cos2, sin2) = (cos * cos - sin * sin, 2.0 * sin * cos);
-    let (even, odd) = ((1.0 - cos) / 2.0, (cos - cos2) / 6.0);
-    let a2 = 3.0 * mass * (even - odd);
-    let a1 = sin + mass * ux * (2.0 * sin - sin2);
-    let a0 = ux * cos - uy + 3.0 * mass * ux * ux * (even + odd);
-    let discriminant = a1 * a1 - 4.0 * a2 * a0;
-    if a1 > 0.0 && discriminant >= 0.0 {
-        // The root that tends to the flat −a0/a1 as M → 0, in cancellation-free form.
-        -2.0 * a0 / (a1 + discriminant.sqrt())
-    } else {
-        (uy - ux * cos) / sin
-    }
-}
-
-/// `sin ψ_c`, the sine of the critical angle at `u_x` (outside the photon sphere): rays leaving
-/// inward at more than `ψ_c` fall into the hole.
-fn critical_sin(mass: f64, ux: f64) -> f64 {
-    3.0 * 3f64.sqrt() * mass * slope_scale(mass, ux)
-}
-
-/// `u_x/σ_x = u_x √(1 − 2Mu_x)`: the start slope of (1) is `s = −(u_x/σ_x) cot ψ`.
-fn slope_scale(mass: f64, ux: f64) -> f64 {
-    ux * (1.0 - 2.0 * mass * ux).sqrt()
-}
-
-/// The parameter each way is shot, guessed and tabulated by, scale-free in `M`: the short way
-/// by `Ms`, `M` times the start slope of (1); the long way by `ln ε`, where
-/// `sin ψ = sin ψ_c (1 + ε)`, in which the sweep is nearly linear near the photon sphere.
-pub(super) fn start_parameter(way: Way, mass: f64, ux: f64, psi: f64) -> f64 {
-    match way {
-        Way::Short => -mass * slope_scale(mass, ux) / psi.tan(),
-        Way::Long => (psi.sin() / critical_sin(mass, ux) - 1.0).ln(),
-    }
-}
-
-/// The long way's start slope `s` at [`start_parameter`] `ln ε`: `sin ψ = sin ψ_c (1 + ε)` on the
-/// inward side.
-fn long_start_slope(mass: f64, ux: f64, ln_epsilon: f64) -> f64 {
-    inward_slope(mass, ux, (critical_sin(mass, ux) * (1.0 + ln_epsilon.exp())).min(1.0))
-}
-
-/// The start slope `s = −(u_x/σ_x) cot ψ` of a ray leaving `u_x` inward (`ψ > π/2`) with
-/// `sin ψ = sin`, where `−cot ψ = √(1 − sin²ψ)/sin ψ`.
-fn inward_slope(mass: f64, ux: f64, sin: f64) -> f64 {
-    slope_scale(mass, ux) * (1.0 - sin * sin).sqrt() / sin
-}
-
-/// First guess of [`start_parameter`] for the ray from `u_x` to `u_y` sweeping `sweep` (the short
-/// way's `Δφ` has cosine `cos` and sine `sin`).
-///
-/// Short way: [`first_guess`]. Long way: in the strong-deflection limit a ray with
-/// `b = b_c(1 + ε)` from infinity to infinity sweeps `−ln ε + ln(216(7 − 4√3))` (Bozza 2002,
-/// eq. 36 with π added), less the azimuth the critical ray sweeps between each end and infinity,
-/// `S(u) = 2[artanh √(2M(u + 1/6M)) − artanh √(1/3)]` (the critical orbit's integral, since
-/// `1/b_c² − u² + 2Mu³ = 2M(u − 1/3M)²(u + 1/6M)`); an end inside the photon sphere has no such
-/// limit, and the guess is a little off critical.
-pub(super) fn guessed_parameter(way: Way, mass: f64, ux: f64, uy: f64, cos: f64, sin: f64, sweep: f64) -> f64 {
-    match way {
-        Way::Short => mass * first_guess(mass, ux, uy, cos, sin),
-        Way::Long => {
-            let to_infinity =
-                |u: f64| 2.0 * ((2.0 * mass * u + 1.0 / 3.0).sqrt().atanh() - (1.0f64 / 3.0).sqrt().atanh());
-            let ln_epsilon = (216.0 * (7.0 - 4.0 * 3f64.sqrt())).ln() - sweep - to_infinity(ux) - to_infinity(uy);
-            if ln_epsilon.is_finite() {
-                ln_epsilon
-            } else {
-                0.05f64.ln()
-            }
-        }
-    }
 }
 
 /// Integrates (1), (2) and (4) from `φ = 0` to `sweep` by Taylor series at relative tolerance

@@ -10,9 +10,12 @@ use super::capabilities::{
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
 use crate::disk::CircularOrbits;
-use crate::geodesic::connect::Connector;
 use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{norm3, spatial, Vector4};
+use connect::Connector;
+
+pub mod binet_taylor;
+pub mod connect;
 
 /// Schwarzschild spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,7 +91,7 @@ impl PlaneMetric for Schwarzschild {
     }
 
     /// The curvature of a ray in world coordinates is `3Mu⁵/(u² + u'²)^{3/2} ≥ 0`
-    /// ([`connect`](crate::geodesic::connect) equation (1)).
+    /// ([`connect`] equation (1)).
     fn bends_towards_centre(&self) -> bool {
         true
     }

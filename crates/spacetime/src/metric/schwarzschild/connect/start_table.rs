@@ -1,7 +1,7 @@
 //! Starts of connections, tabulated once for every mass, by the [`StartTables`] a
-//! [`Connector`](super::connect::Connector) owns (not global state: a render builds its own).
+//! [`Connector`](super::Connector) owns (not global state: a render builds its own).
 //!
-//! [`connect`](super::connect) shoots each way from a first guess: the short way's is correct to
+//! [`connect`](super) shoots each way from a first guess: the short way's is correct to
 //! first order in `M`, the long way's is the strong-deflection limit. In a room round a hole
 //! (`3Mu` up to 0.3) both miss by a few per cent, so coarse shots have to bring them within reach
 //! of the fine one. The exact [`start_parameter`] (the short way's slope `Ms`, the long way's
@@ -12,7 +12,8 @@
 //! way and 0.2 s the long way), the correction leaves a miss that the first, fine, shot takes
 //! out.
 
-use super::connect::{guessed_parameter, solve, start_parameter, Way, Waypoints};
+use super::guess::{guessed_parameter, start_parameter};
+use super::{solve, Way, Waypoints};
 use crate::metric::Schwarzschild;
 use std::f64::consts::PI;
 use std::sync::OnceLock;

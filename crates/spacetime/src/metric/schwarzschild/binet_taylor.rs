@@ -23,17 +23,16 @@
 //! tolerances of the connection solver a step spans a good part of a radian, and a connection
 //! costs two thirds of what Dormand–Prince 5(4) took.
 
-use super::taylor::{product_without_first, shorter_root, square_from, value, value_and_slope};
+use crate::geodesic::taylor::{product_without_first, shorter_root, square_from, value, value_and_slope};
 
-/// Order of the series. Jorba & Zou's optimum is about `−ln(tol)/2` (8 at 10⁻⁷); measured on
-/// the connection benchmark (`cargo bench -p nullpath-spacetime --bench connect`), orders 6, 8,
-/// 10, 12, 14, 20 take 623, 421, 358, 406, 448, 688 µs for 256 short-way connections at a
-/// tolerance of 10⁻⁷ (10 and 12 at 10⁻⁸, the solver's: 399 and 433 µs), all before the step
-/// rule took logarithms instead of powers (10 at 10⁻⁸: 350 µs after).
+/// Order of the series. Jorba & Zou's optimum is about `−ln(tol)/2` (8 at 10⁻⁷), but on the
+/// connection benchmark (`cargo bench -p nullpath-spacetime --bench connect`) order 10 was the
+/// fastest of 6, 8, 10, 12, 14 and 20 at 10⁻⁷, and faster than 12 at the solver's 10⁻⁸: up to
+/// 10, the longer steps more terms allow save more than the terms cost.
 const ORDER: usize = 10;
 /// Longest step, radians. The step rule trusts the last two coefficients of `u` and `J`; were
 /// all four zero at once, this bounds the first neglected term instead: `1/11! ≈ 2.5·10⁻⁸` at one
-/// radian for the sine and cosine of flat space. (1.6 radians would save 3 %.)
+/// radian for the sine and cosine of flat space. (A cap of 1.6 radians saved little.)
 const MAX_STEP: f64 = 1.0;
 
 /// Order of the series of `K`. `K` only sizes Newton's neglected term and carries the Jacobi

@@ -12,13 +12,15 @@ use super::capabilities::{tetrad_frame, tetrad_lapse};
 use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers};
 use super::kerr::{spheroidal, spheroidal_fields, spheroidal_rhs, spinning_rest};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
+use super::schwarzschild::connect::Connector;
 use super::spin_twin::SpinTwin;
 use super::Region;
 use crate::disk::CircularOrbits;
-use crate::geodesic::connect::Connector;
-use crate::geodesic::mino::MinoTracer;
 use crate::geodesic::{State, TraceSettings};
 use crate::tensor::{Covector4, Vector4};
+use mino::MinoTracer;
+
+pub mod mino;
 
 /// Kerr–Newman spacetime.
 #[derive(Clone, Copy, Debug, PartialEq)]
