@@ -11,7 +11,7 @@
 //! For filters that are never negative every `w_i = 1` and this is the plain sample mean. With
 //! negative lobes `Σ w_i` can cancel to exactly zero at low sample counts; there the ratio is
 //! undefined and the pixel falls back to `Σ w_i L_i / n`, which is unbiased because the weights
-//! have expectation 1 (see `filter_sampler`).
+//! have expectation 1 (see `filter::sampler`).
 //!
 //! Sums are `f64` and samples are added in the caller's order, so a pixel's value depends only on
 //! which samples it received and in what order — never on threads.

@@ -14,7 +14,7 @@
 //! Everything is built once, in [`FilterSampler::new`]; [`FilterSampler::sample`] allocates nothing
 //! and is two binary searches.
 
-use super::filter::{FilterError, FilterSample};
+use super::{FilterError, FilterSample};
 use crate::sampling::PiecewiseConstant2D;
 
 /// Table cells per pixel of filter width along each axis (pbrt-v4 uses 16; finer tables cost only

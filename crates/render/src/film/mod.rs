@@ -46,7 +46,6 @@
 mod checkpoint;
 mod data;
 mod filter;
-mod filter_sampler;
 pub mod noise;
 mod output;
 mod pixel;
