@@ -38,8 +38,8 @@ pub enum Workload {
 }
 
 /// The benchmark scenes, bundled with the binary so the benchmarks run anywhere.
-const CORNELL_SCENE: &str = include_str!("../../scenes/cornell-box.toml");
-const ROOM_SCENE: &str = include_str!("../../scenes/room-black-hole.toml");
+const CORNELL_SCENE: &str = include_str!("../../../scenes/cornell-box.toml");
+const ROOM_SCENE: &str = include_str!("../../../scenes/room-black-hole.toml");
 
 /// The disk workload: scenes/accretion-disk.toml's hole, camera and disk, on a black sky, at one
 /// sample per pixel with no bounce.
