@@ -248,7 +248,7 @@ pub const MASS: ParameterDescriptor = ParameterDescriptor {
 /// axis's tip (the prograde side of `nullpath geodesic` is then positive impact parameters).
 pub const SPIN: ParameterDescriptor = ParameterDescriptor {
     name: "spin",
-    meaning: "angular momentum per unit mass a = J/M, counter-clockwise about `axis`",
+    meaning: "angular momentum per unit mass a = J/M, counter-clockwise seen from the spin axis's tip",
     unit: "length",
     range: Range::Signed,
     default: None,

@@ -15,7 +15,7 @@ pub struct Minkowski;
 /// `type = "minkowski"`: flat space, no parameters.
 pub static MINKOWSKI: MetricDescriptor = MetricDescriptor {
     name: "minkowski",
-    description: "flat space (the default when there is no `[spacetime]`)",
+    description: "flat space",
     parameters: &[],
     constraint: None,
     oriented: false,

@@ -31,7 +31,8 @@ pub const MIN_RELATIVE_LENSING_WIDTH: f64 = 1e-9;
 /// `type = "wormhole"`: [`Spacetime::wormhole`].
 pub static WORMHOLE: MetricDescriptor = MetricDescriptor {
     name: "wormhole",
-    description: "the wormhole of *Interstellar* (below)",
+    description:
+        "the wormhole of *Interstellar*: a Morris–Thorne wormhole with a cylindrical interior (James et al. 2015)",
     parameters: &[
         THROAT,
         ParameterDescriptor {
