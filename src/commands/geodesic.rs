@@ -1,20 +1,10 @@
 //! `nullpath geodesic`: scatter one ray off a spacetime (see `spacetime::scattering`).
 
-use clap::{Parser, ValueEnum};
+use clap::builder::{PossibleValue, PossibleValuesParser};
+use clap::{Arg, ArgMatches, FromArgMatches, Parser, ValueEnum};
+use spacetime::metric::{MetricDescriptor, ParameterDescriptor, SPACETIMES};
 use spacetime::scattering::{scatter, Scattering};
-use spacetime::{Fate, Integrator, Minkowski, Spacetime};
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum SpacetimeKind {
-    Minkowski,
-    Schwarzschild,
-    Kerr,
-    Ellis,
-    ReissnerNordstrom,
-    KerrNewman,
-    /// The wormhole of *Interstellar* (`--throat`, `--length`, `--lensing-width`).
-    Wormhole,
-}
+use spacetime::{Fate, Integrator, Spacetime};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum IntegratorKind {
@@ -24,29 +14,15 @@ pub enum IntegratorKind {
 
 #[derive(Parser, Debug)]
 pub struct Args {
-    /// Which spacetime.
-    #[arg(long)]
-    spacetime: SpacetimeKind,
-    /// Mass M (Schwarzschild, Kerr, Reissner–Nordström, Kerr–Newman).
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    mass: f64,
-    /// Spin a, |a| ≤ M (Kerr; a² + Q² ≤ M² for Kerr–Newman); positive b is then the prograde
-    /// side.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    spin: f64,
-    /// Charge Q, |Q| ≤ M (Reissner–Nordström, Kerr–Newman).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    charge: f64,
-    /// Throat radius b₀ (Ellis, wormhole).
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    throat: f64,
-    /// Length of the wormhole's cylindrical throat (wormhole).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    length: f64,
-    /// Lensing width 𝒲 of the wormhole's mouths (wormhole; required there).
-    #[arg(long, allow_hyphen_values = true)]
-    lensing_width: Option<f64>,
-    /// Impact parameter b, in the same units as M or b₀.
+    /// Which spacetime: a registered metric, as scene files name it.
+    #[arg(long, value_parser = PossibleValuesParser::new(spacetime_names()))]
+    spacetime: String,
+    /// The spacetime's parameters, one flag each (`--lensing-width` for `lensing_width`), from
+    /// the registered metrics' descriptors.
+    #[command(flatten)]
+    parameters: ParameterFlags,
+    /// Impact parameter b, in the same units as M or b₀; for a spinning hole positive b is the
+    /// prograde side.
     #[arg(long, allow_hyphen_values = true)]
     impact: f64,
     /// Tilt of the ray's plane from the equatorial plane, degrees.
@@ -75,21 +51,108 @@ fn check(name: &str, value: f64, ok: bool, what: &str) -> Result<f64, String> {
     }
 }
 
-fn spacetime(args: &Args) -> Result<Spacetime, String> {
-    let s = match args.spacetime {
-        SpacetimeKind::Minkowski => Ok(Spacetime::Minkowski(Minkowski)),
-        SpacetimeKind::Schwarzschild => Spacetime::schwarzschild(args.mass),
-        SpacetimeKind::Kerr => Spacetime::kerr(args.mass, args.spin),
-        SpacetimeKind::Ellis => Spacetime::ellis(args.throat),
-        SpacetimeKind::ReissnerNordstrom => Spacetime::reissner_nordstrom(args.mass, args.charge),
-        SpacetimeKind::KerrNewman => Spacetime::kerr_newman(args.mass, args.spin, args.charge),
-        SpacetimeKind::Wormhole => {
-            let width = args.lensing_width.ok_or("wormhole spacetime: --lensing-width is required")?;
-            Spacetime::wormhole(args.throat, args.length, width)
+/// The registered metrics, for `--spacetime`, each with its description in `--help`.
+fn spacetime_names() -> Vec<PossibleValue> {
+    SPACETIMES.iter().map(|d| PossibleValue::new(d.name).help(d.description)).collect()
+}
+
+/// A parameter's flag: its scene-file name with `-` for `_`.
+fn flag(name: &str) -> String {
+    name.replace('_', "-")
+}
+
+/// Each parameter of the registered metrics once, with the metrics that have it.
+fn registered_parameters() -> Vec<(&'static ParameterDescriptor, Vec<&'static MetricDescriptor>)> {
+    let mut out: Vec<(&'static ParameterDescriptor, Vec<&'static MetricDescriptor>)> = Vec::new();
+    for d in SPACETIMES {
+        for p in d.parameters {
+            match out.iter_mut().find(|(q, _)| q.name == p.name) {
+                Some((_, of)) => of.push(d),
+                None => out.push((p, vec![d])),
+            }
         }
+    }
+    out
+}
+
+/// The parameter flags given on the command line: one flag per parameter of the registered
+/// metrics, generated from their descriptors.
+#[derive(Clone, Debug, Default)]
+struct ParameterFlags(Vec<(&'static str, f64)>);
+
+impl FromArgMatches for ParameterFlags {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        let given = registered_parameters()
+            .into_iter()
+            .filter_map(|(p, _)| matches.get_one::<f64>(p.name).map(|&v| (p.name, v)))
+            .collect();
+        Ok(ParameterFlags(given))
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(matches)?;
+        Ok(())
+    }
+}
+
+impl clap::Args for ParameterFlags {
+    fn augment_args(cmd: clap::Command) -> clap::Command {
+        registered_parameters().into_iter().fold(cmd, |cmd, (p, of)| {
+            let of: Vec<&str> = of.iter().map(|d| d.name).collect();
+            let default = match p.command_line_default.or(p.default) {
+                Some(v) => format!("default {v}"),
+                None => "required there".to_string(),
+            };
+            let help = format!("{} ({}; {default})", capitalized(p.meaning), of.join(", "));
+            cmd.arg(
+                Arg::new(p.name)
+                    .long(flag(p.name))
+                    .value_name(flag(p.name).to_uppercase())
+                    .value_parser(clap::value_parser!(f64))
+                    .allow_hyphen_values(true)
+                    .help(help),
+            )
+        })
+    }
+
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        Self::augment_args(cmd)
+    }
+}
+
+fn capitalized(s: &str) -> String {
+    let mut chars = s.chars();
+    chars.next().map_or_else(String::new, |c| c.to_uppercase().chain(chars).collect())
+}
+
+/// The spacetime named by `--spacetime`, from its flags: each parameter the flag's value, else
+/// its command-line default ([`ParameterDescriptor::command_line_default`]), else the scene
+/// files' default; checked by the metric's constructor. A flag of a parameter the spacetime does
+/// not have is an error, not ignored.
+fn spacetime(args: &Args) -> Result<Spacetime, String> {
+    let Some(d) = SPACETIMES.iter().find(|d| d.name == args.spacetime) else {
+        let names: Vec<&str> = SPACETIMES.iter().map(|d| d.name).collect();
+        return Err(format!("unknown spacetime \"{}\"; expected one of {}", args.spacetime, names.join(", ")));
     };
-    let name = args.spacetime.to_possible_value().map_or(String::new(), |v| v.get_name().to_owned());
-    s.map_err(|e| format!("{name} spacetime: {e}"))
+    let flags: Vec<String> = d.parameters.iter().map(|p| format!("--{}", flag(p.name))).collect();
+    for &(name, _) in &args.parameters.0 {
+        if !d.parameters.iter().any(|p| p.name == name) {
+            let has = if flags.is_empty() { "none".to_string() } else { flags.join(", ") };
+            return Err(format!("{} spacetime: --{} is not one of its parameters (it has: {has})", d.name, flag(name)));
+        }
+    }
+    let mut values = Vec::with_capacity(d.parameters.len());
+    for p in d.parameters {
+        let given = args.parameters.0.iter().find(|(name, _)| *name == p.name).map(|&(_, v)| v);
+        match given.or(p.command_line_default).or(p.default) {
+            Some(v) => values.push(v),
+            None => return Err(format!("{} spacetime: --{} is required", d.name, flag(p.name))),
+        }
+    }
+    (d.build)(&values).map_err(|e| match e.parameter {
+        "" => format!("{} spacetime: {}", d.name, e.message),
+        p => format!("{} spacetime: --{}: {}", d.name, flag(p), e.message),
+    })
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
@@ -138,4 +201,49 @@ fn text(s: &Scattering) -> String {
         out += "deflection_rad: none (the ray did not come back out)\n";
     }
     out + &format!("steps: {}\nmax_abs_hamiltonian: {:.3e}\n", s.steps, s.max_abs_hamiltonian)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(line: &[&str]) -> Result<Args, clap::Error> {
+        Args::try_parse_from([&["geodesic"], line].concat())
+    }
+
+    /// Every registered metric is a `--spacetime`, and every parameter of one a flag.
+    #[test]
+    fn flags_come_from_the_descriptors() {
+        for d in SPACETIMES {
+            let mut line = vec!["--spacetime", d.name, "--impact", "5"];
+            let valid = |name: &str| match name {
+                "spin" => "0.6",
+                "charge" => "-0.5",
+                "length" => "0.01",
+                "lensing_width" => "0.05",
+                _ => "1.5",
+            };
+            let values: Vec<&str> = d.parameters.iter().map(|p| valid(p.name)).collect();
+            let flags: Vec<String> = d.parameters.iter().map(|p| format!("--{}", flag(p.name))).collect();
+            for (f, v) in flags.iter().zip(&values) {
+                line.extend([f.as_str(), v]);
+            }
+            let parsed = args(&line).unwrap_or_else(|e| panic!("{}: {e}", d.name));
+            let values: Vec<f64> = values.iter().map(|v| v.parse().unwrap_or(f64::NAN)).collect();
+            let built = (d.build)(&values).expect("valid values");
+            assert_eq!(spacetime(&parsed), Ok(built), "{}", d.name);
+        }
+        assert!(args(&["--spacetime", "kerrr", "--impact", "5"]).is_err());
+    }
+
+    #[test]
+    fn defaults_and_foreign_flags() {
+        let kn = args(&["--spacetime", "kerr-newman", "--spin", "0.3", "--charge", "-0.2", "--impact", "5"]);
+        assert_eq!(spacetime(&kn.expect("parses")), Spacetime::kerr_newman(1.0, 0.3, -0.2).map_err(|e| e.to_string()));
+        let flat = args(&["--spacetime", "minkowski", "--mass", "2", "--impact", "5"]).expect("parses");
+        let e = spacetime(&flat).expect_err("minkowski has no mass");
+        assert!(e.contains("--mass is not one of its parameters (it has: none)"), "{e}");
+        let e = spacetime(&args(&["--spacetime", "kerr", "--spin", "2", "--impact", "5"]).expect("parses"));
+        assert_eq!(e, Err("kerr spacetime: --spin: |spin| must be ≤ mass = 1, got 2".to_string()));
+    }
 }

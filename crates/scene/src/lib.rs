@@ -41,11 +41,13 @@ mod gltf_import;
 mod nesting;
 mod reader;
 
+pub use build::spacetime_table;
 pub use error::SceneError;
 
 use error::io_message;
 use reader::Doc;
 use render::resource::ReadPolicy;
+use spacetime::metric::{MetricDescriptor, SPACETIMES};
 use std::path::{Path, PathBuf};
 use toml::de::DeTable;
 
@@ -98,7 +100,7 @@ pub fn load_allowing(
             .allow(dir)
             .map_err(|e| SceneError::file(&origin, format!("cannot allow reading '{}': {e}", dir.display())))?;
     }
-    parse_with(&text, &origin, base_dir, &policy, view)
+    parse_with(&text, &origin, base_dir, &policy, view, SPACETIMES)
 }
 
 /// Builds the scene described by `text`. `origin` names it in error messages (a path, or e.g.
@@ -115,16 +117,29 @@ pub fn parse_view(
     base_dir: &Path,
     view: Option<&str>,
 ) -> Result<render::scene::Scene, SceneError> {
-    parse_with(text, origin, base_dir, &ReadPolicy::new(base_dir), view)
+    parse_with(text, origin, base_dir, &ReadPolicy::new(base_dir), view, SPACETIMES)
 }
 
-/// As [`parse_view`], reading files under `policy`.
+/// As [`parse`], the `[spacetime]` type one of `metrics` instead of the built-in metrics
+/// ([`SPACETIMES`]) or a metric written in the file: how a test shows that a metric's
+/// descriptor is all the reader needs.
+pub fn parse_with_metrics(
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+    metrics: &[&MetricDescriptor],
+) -> Result<render::scene::Scene, SceneError> {
+    parse_with(text, origin, base_dir, &ReadPolicy::new(base_dir), None, metrics)
+}
+
+/// As [`parse_view`], reading files under `policy`, the `[spacetime]` type one of `metrics`.
 fn parse_with(
     text: &str,
     origin: &str,
     base_dir: &Path,
     policy: &ReadPolicy,
     view: Option<&str>,
+    metrics: &[&MetricDescriptor],
 ) -> Result<render::scene::Scene, SceneError> {
     if let Some(offset) = nesting::too_deep(text) {
         let message = format!(
@@ -138,7 +153,7 @@ fn parse_with(
         SceneError::at(origin, text, offset, None, format!("invalid TOML: {}", e.message().trim_end()))
     })?;
     let doc = Doc { origin, text };
-    build::scene(&doc, &root, base_dir, policy, view)
+    build::scene(&doc, &root, base_dir, policy, view, metrics)
 }
 
 /// The names of the `[views.NAME]` cameras in the scene text `text`, in file order; empty when

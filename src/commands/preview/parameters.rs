@@ -1,11 +1,12 @@
-//! The spacetime's parameters as the preview's sliders show them. The physics crate lists them
-//! with their ranges and rebuilds the spacetime from new values ([`Spacetime::parameters`],
-//! [`Spacetime::with_parameters`]); the preview keeps each slider's range that of the scene
-//! file's spacetime, so that moving a slider does not move the range under it, narrowed to the
+//! The spacetime's parameters as the preview's sliders show them. The metric's descriptor lists
+//! them with their ranges and rebuilds the spacetime from new values
+//! ([`MetricDescriptor::sliders`], [`MetricDescriptor::with_parameters`]); the preview keeps each
+//! slider's range that of the scene file's spacetime, so that moving a slider does not move the range under it, narrowed to the
 //! values the spacetime allows with the other parameters as they are (|spin| ≤ mass for Kerr,
 //! spin² + charge² ≤ mass² for Kerr–Newman, …), so that a slider never offers a value the
 //! server must refuse.
 
+use spacetime::metric::MetricDescriptor;
 use spacetime::Spacetime;
 use std::collections::BTreeMap;
 
@@ -24,10 +25,15 @@ pub struct Parameter {
 
 /// The sliders of `spacetime` (the one shown, made from `scene`'s by [`with_values`]), with the
 /// ranges of `scene`'s own parameters (the file's), each narrowed to the values it can take
-/// with the others as `spacetime` has them.
+/// with the others as `spacetime` has them; none for a written metric.
 pub fn parameters(spacetime: &Spacetime, scene: &Spacetime) -> Vec<Parameter> {
-    let ranges = scene.parameters();
-    let shown = spacetime.parameters();
+    scene.descriptor().map_or_else(Vec::new, |d| sliders(d, spacetime, scene))
+}
+
+/// [`parameters`] by the metric's descriptor `d` (`scene`'s): its parameters' names and ranges.
+pub fn sliders(d: &MetricDescriptor, spacetime: &Spacetime, scene: &Spacetime) -> Vec<Parameter> {
+    let ranges = d.sliders(scene).unwrap_or_default();
+    let shown = d.sliders(spacetime).unwrap_or_default();
     shown
         .iter()
         .map(|p| {
@@ -35,7 +41,7 @@ pub fn parameters(spacetime: &Spacetime, scene: &Spacetime) -> Vec<Parameter> {
             let valid = |x: f64| {
                 let values: Vec<(&str, f64)> =
                     shown.iter().map(|q| (q.name, if q.name == p.name { x } else { q.value })).collect();
-                scene.with_parameters(&values).is_ok()
+                d.with_parameters(scene, &values).is_ok()
             };
             let (min, max) = (edge(&valid, p.value, range.min), edge(&valid, p.value, range.max));
             Parameter { name: p.name, value: p.value, min, max }
@@ -132,7 +138,10 @@ mod tests {
     #[test]
     fn new_values_are_checked() {
         let hole = Spacetime::schwarzschild(0.3).expect("valid");
-        assert_eq!(with_values(&hole, &values(&[("mass", 0.6)])), Spacetime::schwarzschild(0.6).map_err(|e| e.0));
+        assert_eq!(
+            with_values(&hole, &values(&[("mass", 0.6)])),
+            Spacetime::schwarzschild(0.6).map_err(|e| e.to_string())
+        );
         assert!(with_values(&hole, &values(&[("mass", -0.1)])).is_err());
         assert!(with_values(&hole, &values(&[("mass", f64::NAN)])).is_err());
         assert!(with_values(&hole, &values(&[("mass", 1.5)])).is_err(), "beyond the slider");

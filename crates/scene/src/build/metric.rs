@@ -67,7 +67,7 @@ pub(super) fn metric(t: &Table<'_>) -> Result<Spacetime> {
     let scale = t.or("scale", 1.0, |n| n.f64())?;
     let written = WrittenMetric::new(coordinates, components, horizon, scale);
     let at = if t.get("scale").is_some() { "scale" } else { "g_tt" };
-    written.map(|m| Spacetime::Written(UserMetric(m))).map_err(|e| t.loc(at).err(e.to_string()))
+    written.map(|m| Spacetime::Written(UserMetric(m))).map_err(|e| t.loc(at).err(e.message))
 }
 
 /// `parameters = { M = 1.0, ... }`: names that are not coordinates or functions, finite values.

@@ -9,16 +9,19 @@ mod metric;
 mod object;
 mod settings;
 mod sky;
+mod spacetime;
 
-use crate::reader::{num, Doc, Result, Table};
-use render::geometry::Vec3;
+pub use spacetime::spacetime_table;
+
+use crate::reader::{Doc, Result, Table};
+use ::spacetime::metric::MetricDescriptor;
+use ::spacetime::Region;
 use render::image_io::ImageData;
 use render::material::Material;
 use render::resource::{ReadPolicy, Resource};
 use render::scene::Scene;
 use render::sky::Sky;
 use render::world::{Object, World};
-use spacetime::{Minkowski, Region, Spacetime};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -47,24 +50,25 @@ const TOP_LEVEL: &[&str] =
     &["spacetime", "camera", "views", "animation", "render", "sky", "lower", "materials", "objects", "accretion_disk"];
 
 /// Builds the scene described by the parsed document `root`, whose relative paths start at
-/// `base_dir`, reading files under `policy`.
+/// `base_dir`, reading files under `policy`, its `[spacetime]` one of `metrics` (or written).
 pub(crate) fn scene<'a>(
     doc: &'a Doc<'a>,
     root: &'a Spanned<DeTable<'a>>,
     base_dir: &'a Path,
     policy: &'a ReadPolicy,
     view: Option<&str>,
+    metrics: &[&MetricDescriptor],
 ) -> Result<Scene> {
     let root = Table::root(doc, root, TOP_LEVEL)?;
-    let spacetime = match root.get("spacetime") {
-        Some(n) => spacetime_section(&n.tagged("spacetime", &spacetime_tags())?)?,
-        None => (Spacetime::Minkowski(Minkowski), Vec3::Y),
+    let file = match root.get("spacetime") {
+        Some(n) => spacetime::section(&n, metrics)?,
+        None => spacetime::FileSpacetime::flat(),
     };
-    let (spacetime, axis) = spacetime;
+    let axis = file.axis;
     let (cameras, chosen) = camera_tables(doc, &root, view)?;
     // Each camera's own spacetime: a view may set the parameters anew (`[views.NAME.spacetime]`,
     // as the preview's Save view writes its sliders), and the scene is in the chosen one's.
-    let spacetimes = cameras.iter().map(|t| view_spacetime(t, &spacetime)).collect::<Result<Vec<_>>>()?;
+    let spacetimes = cameras.iter().map(|t| spacetime::view_spacetime(t, &file)).collect::<Result<Vec<_>>>()?;
     let spacetime = spacetimes[chosen].clone();
     let mut b = Builder {
         base_dir,
@@ -160,125 +164,6 @@ fn camera_tables<'a>(doc: &Doc<'a>, root: &Table<'a>, view: Option<&str>) -> Res
             Err(doc.error(0, "views", format!("no view named \"{name}\" ([views.{name}]); {known}")))
         }
     }
-}
-
-/// The spacetime the camera table `t` sees: `file`'s, with the parameters a view's `spacetime`
-/// table sets anew, each within the range [`Spacetime::parameters`] offers (the preview's
-/// sliders': up to three times the file's length scale) and the whole checked by the physics
-/// crate as `[spacetime]` is.
-fn view_spacetime(t: &Table<'_>, file: &Spacetime) -> Result<Spacetime> {
-    // `[camera]` takes no `spacetime` table: `[spacetime]` is its.
-    let Some(n) = t.allows("spacetime").then(|| t.get("spacetime")).flatten() else {
-        return Ok(file.clone());
-    };
-    let names: Vec<&'static str> = file.parameters().iter().map(|p| p.name).collect();
-    let values = n.table(&names)?.entries().into_iter().map(|(k, v)| Ok((k, v.f64()?))).collect::<Result<Vec<_>>>()?;
-    file.with_parameters(&values).map_err(|e| n.err(e.to_string()))
-}
-
-/// Reads one spacetime type's parameters from its table.
-type SpacetimeReader = fn(&Table<'_>) -> Result<Spacetime>;
-
-/// The spacetime types of scene files: name, keys besides `type`, and reader.
-const SPACETIMES: &[(&str, &[&str], SpacetimeReader)] = &[
-    ("minkowski", &[], |_| Ok(Spacetime::Minkowski(Minkowski))),
-    ("schwarzschild", &["mass"], schwarzschild),
-    ("kerr", &["mass", "spin", "axis"], kerr),
-    ("ellis", &["throat"], ellis),
-    ("reissner-nordstrom", &["mass", "charge"], reissner_nordstrom),
-    ("kerr-newman", &["mass", "spin", "charge", "axis"], kerr_newman),
-    ("wormhole", &["throat", "length", "lensing_width"], wormhole),
-    ("metric", metric::KEYS, metric::metric),
-];
-
-/// `[spacetime]`: the metric, validated by the physics crate, and its symmetry axis in the world
-/// (a Kerr hole's spin axis; default `+y`, up).
-fn spacetime_section((kind, t): &(usize, Table<'_>)) -> Result<(Spacetime, Vec3)> {
-    let (_, keys, read) = SPACETIMES[*kind];
-    // Only the types that have an axis read one (the others reject the key as unknown).
-    let axis = if keys.contains(&"axis") { t.or("axis", Vec3::Y, |n| n.direction())? } else { Vec3::Y };
-    Ok((read(t)?, axis))
-}
-
-/// The types and keys of [`SPACETIMES`], as the reader checks a tagged table against them.
-fn spacetime_tags() -> Vec<(&'static str, &'static [&'static str])> {
-    SPACETIMES.iter().map(|(name, keys, _)| (*name, *keys)).collect()
-}
-
-/// A physics-crate parameter error, at the key it concerns.
-fn checked(
-    t: &Table<'_>,
-    key: &str,
-    s: std::result::Result<Spacetime, spacetime::metric::ParameterError>,
-) -> Result<Spacetime> {
-    s.map_err(|e| t.loc(key).err(e.to_string()))
-}
-
-/// `mass`, required and ≥ 0.
-fn mass(t: &Table<'_>) -> Result<f64> {
-    let m = t.req("mass", |n| n.f64())?;
-    if m >= 0.0 {
-        Ok(m)
-    } else {
-        Err(t.loc("mass").err(format!("must be ≥ 0, got {}", num(m))))
-    }
-}
-
-/// `key` (a spin or a charge), required with `|key| ≤ mass`.
-fn at_most_mass(t: &Table<'_>, key: &str, mass: f64) -> Result<f64> {
-    let v = t.req(key, |n| n.f64())?;
-    if v.abs() <= mass {
-        Ok(v)
-    } else {
-        Err(t.loc(key).err(format!("|{key}| must be ≤ mass = {}, got {}", num(mass), num(v))))
-    }
-}
-
-fn schwarzschild(t: &Table<'_>) -> Result<Spacetime> {
-    checked(t, "mass", Spacetime::schwarzschild(mass(t)?))
-}
-
-fn kerr(t: &Table<'_>) -> Result<Spacetime> {
-    let m = mass(t)?;
-    checked(t, "spin", Spacetime::kerr(m, at_most_mass(t, "spin", m)?))
-}
-
-fn reissner_nordstrom(t: &Table<'_>) -> Result<Spacetime> {
-    let m = mass(t)?;
-    checked(t, "charge", Spacetime::reissner_nordstrom(m, at_most_mass(t, "charge", m)?))
-}
-
-/// Each of `spin` and `charge` at most the mass, then `spin² + charge² ≤ mass²` (at `charge`).
-fn kerr_newman(t: &Table<'_>) -> Result<Spacetime> {
-    let m = mass(t)?;
-    let spin = at_most_mass(t, "spin", m)?;
-    checked(t, "charge", Spacetime::kerr_newman(m, spin, at_most_mass(t, "charge", m)?))
-}
-
-fn ellis(t: &Table<'_>) -> Result<Spacetime> {
-    checked(t, "throat", Spacetime::ellis(positive(t, "throat")?))
-}
-
-/// A positive length `key`, required.
-fn positive(t: &Table<'_>, key: &str) -> Result<f64> {
-    let v = t.req(key, |n| n.f64())?;
-    if v > 0.0 {
-        Ok(v)
-    } else {
-        Err(t.loc(key).err(format!("must be > 0, got {}", num(v))))
-    }
-}
-
-/// The *Interstellar* wormhole: `throat` and `lensing_width` required and > 0, `length` (of the
-/// cylindrical interior) ≥ 0, default 0.
-fn wormhole(t: &Table<'_>) -> Result<Spacetime> {
-    let throat = positive(t, "throat")?;
-    let length = t.or("length", 0.0, |n| n.f64())?;
-    if !(length >= 0.0) {
-        return Err(t.loc("length").err(format!("must be ≥ 0, got {}", num(length))));
-    }
-    let width = positive(t, "lensing_width")?;
-    checked(t, "lensing_width", Spacetime::wormhole(throat, length, width))
 }
 
 impl<'a> Builder<'a> {

@@ -1,10 +1,13 @@
 //! The closed set of spacetimes of scene files and the command line — the built-in ones and a
-//! metric written in a scene file — validated on construction.
+//! metric written in a scene file — validated on construction. Each built-in metric's file holds
+//! its validating constructor and its [`MetricDescriptor`]; this enum is what the renderer
+//! dispatches on, once per ray.
 
 use super::capabilities::{Capabilities, Tracers};
+use super::descriptor::{chosen_values, MetricDescriptor, Parameter, ParameterError};
 use super::{
-    Dneg, Ellis, Kerr, KerrNewman, Metric, Minkowski, MorrisThorne, Region, ReissnerNordstrom, Schwarzschild,
-    UserMetric, Wormhole, WrittenMetric,
+    Ellis, Kerr, KerrNewman, Metric, Minkowski, Region, ReissnerNordstrom, Schwarzschild, UserMetric, Wormhole,
+    WrittenMetric,
 };
 
 /// A spacetime of a scene. Cloning is cheap: a written metric shares its compiled expressions.
@@ -16,109 +19,49 @@ pub enum Spacetime {
     Ellis(Ellis),
     ReissnerNordstrom(ReissnerNordstrom),
     KerrNewman(KerrNewman),
-    /// The Morris–Thorne wormhole of *Interstellar* ([`Dneg`]'s shape).
+    /// The Morris–Thorne wormhole of *Interstellar* ([`Dneg`](super::Dneg)'s shape).
     Wormhole(Wormhole),
     /// A metric written as expressions in a scene file.
     Written(UserMetric<WrittenMetric>),
 }
 
-/// A parameter outside the spacetime's domain.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ParameterError(pub String);
-
-impl std::fmt::Display for ParameterError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for ParameterError {}
-
-fn finite_non_negative(name: &str, v: f64) -> Result<f64, ParameterError> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(ParameterError(format!("{name} must be a finite number ≥ 0, got {v}")))
-    }
-}
-
-/// The narrowest lensing width of the *Interstellar* wormhole, as a fraction of its throat.
-pub const MIN_RELATIVE_LENSING_WIDTH: f64 = 1e-9;
+/// The `type` of a metric written in a scene file, which has no descriptor: its parameters are
+/// folded into its compiled expressions.
+pub const WRITTEN_NAME: &str = "metric";
 
 impl Spacetime {
-    pub fn schwarzschild(mass: f64) -> Result<Self, ParameterError> {
-        Ok(Spacetime::Schwarzschild(Schwarzschild::new(finite_non_negative("mass", mass)?)))
-    }
-
-    /// Kerr with `|spin| ≤ mass`; spin along +z, positive for counter-clockwise rotation seen
-    /// from +z.
-    pub fn kerr(mass: f64, spin: f64) -> Result<Self, ParameterError> {
-        let mass = finite_non_negative("mass", mass)?;
-        if !spin.is_finite() || spin.abs() > mass {
-            return Err(ParameterError(format!("spin must satisfy |spin| ≤ mass = {mass}, got {spin}")));
+    /// The descriptor of this spacetime's metric (its name and parameters); `None` for a metric
+    /// written in a scene file. The one place that pairs the variants with the registry.
+    pub fn descriptor(&self) -> Option<&'static MetricDescriptor> {
+        match self {
+            Spacetime::Minkowski(_) => Some(&super::minkowski::MINKOWSKI),
+            Spacetime::Schwarzschild(_) => Some(&super::schwarzschild::SCHWARZSCHILD),
+            Spacetime::Kerr(_) => Some(&super::kerr::KERR),
+            Spacetime::Ellis(_) => Some(&super::ellis::ELLIS),
+            Spacetime::ReissnerNordstrom(_) => Some(&super::reissner_nordstrom::REISSNER_NORDSTROM),
+            Spacetime::KerrNewman(_) => Some(&super::kerr_newman::KERR_NEWMAN),
+            Spacetime::Wormhole(_) => Some(&super::morris_thorne::WORMHOLE),
+            Spacetime::Written(_) => None,
         }
-        Ok(Spacetime::Kerr(Kerr::new(mass, spin)))
-    }
-
-    /// Reissner–Nordström with `|charge| ≤ mass`.
-    pub fn reissner_nordstrom(mass: f64, charge: f64) -> Result<Self, ParameterError> {
-        let mass = finite_non_negative("mass", mass)?;
-        if !charge.is_finite() || charge.abs() > mass {
-            return Err(ParameterError(format!("charge must satisfy |charge| ≤ mass = {mass}, got {charge}")));
-        }
-        Ok(Spacetime::ReissnerNordstrom(ReissnerNordstrom::new(mass, charge)))
-    }
-
-    /// Kerr–Newman with `spin² + charge² ≤ mass²`; spin along +z as [`Spacetime::kerr`]'s.
-    pub fn kerr_newman(mass: f64, spin: f64, charge: f64) -> Result<Self, ParameterError> {
-        let mass = finite_non_negative("mass", mass)?;
-        if !(spin.is_finite() && charge.is_finite() && spin * spin + charge * charge <= mass * mass) {
-            return Err(ParameterError(format!(
-                "spin and charge must satisfy spin² + charge² ≤ mass² = {}, got {spin}² + {charge}²",
-                mass * mass
-            )));
-        }
-        Ok(Spacetime::KerrNewman(KerrNewman::new(mass, spin, charge)))
-    }
-
-    pub fn ellis(throat: f64) -> Result<Self, ParameterError> {
-        if !(throat.is_finite() && throat > 0.0) {
-            return Err(ParameterError(format!("throat radius must be a finite number > 0, got {throat}")));
-        }
-        Ok(Spacetime::Ellis(Ellis::new(throat)))
-    }
-
-    /// The wormhole of *Interstellar* (James et al. 2015): throat radius `throat > 0`, interior
-    /// length `length ≥ 0`, lensing width `lensing_width > 0`.
-    pub fn wormhole(throat: f64, length: f64, lensing_width: f64) -> Result<Self, ParameterError> {
-        if !(throat.is_finite() && throat > 0.0) {
-            return Err(ParameterError(format!("throat radius must be a finite number > 0, got {throat}")));
-        }
-        let length = finite_non_negative("length", length)?;
-        // The shape function's `ln(1 + x²)`, with `x ∝ ℓ/𝒲`, overflows for widths near 10⁻¹⁵⁰ of
-        // the distances a ray covers; long before, a narrower lensing region is a sharp edge that
-        // rays cannot tell from one of 10⁻⁹ of the throat.
-        let narrowest = MIN_RELATIVE_LENSING_WIDTH * throat;
-        if !(lensing_width.is_finite() && lensing_width >= narrowest) {
-            return Err(ParameterError(format!(
-                "lensing width must be a finite number ≥ {narrowest:e} ({MIN_RELATIVE_LENSING_WIDTH:e} of the throat \
-                 radius), got {lensing_width}: narrower is an edge no ray resolves in double precision"
-            )));
-        }
-        Ok(Spacetime::Wormhole(MorrisThorne::new(Dneg::new(throat, length, lensing_width))))
     }
 
     /// Stable lower-case name, as in scene files.
     pub fn name(&self) -> &'static str {
-        match self {
-            Spacetime::Minkowski(_) => "minkowski",
-            Spacetime::Schwarzschild(_) => "schwarzschild",
-            Spacetime::Kerr(_) => "kerr",
-            Spacetime::Ellis(_) => "ellis",
-            Spacetime::ReissnerNordstrom(_) => "reissner-nordstrom",
-            Spacetime::KerrNewman(_) => "kerr-newman",
-            Spacetime::Wormhole(_) => "wormhole",
-            Spacetime::Written(_) => "metric",
+        self.descriptor().map_or(WRITTEN_NAME, |d| d.name)
+    }
+
+    /// The parameters with their values and the ranges a user interface offers
+    /// ([`MetricDescriptor::sliders`]); none for a written metric.
+    pub fn parameters(&self) -> Vec<Parameter> {
+        self.descriptor().and_then(|d| d.sliders(self)).unwrap_or_default()
+    }
+
+    /// This spacetime with the named parameters set to new values
+    /// ([`MetricDescriptor::with_parameters`]); a written metric takes none and stays itself.
+    pub fn with_parameters(&self, values: &[(&str, f64)]) -> Result<Spacetime, ParameterError> {
+        match self.descriptor() {
+            Some(d) => d.with_parameters(self, values),
+            None => chosen_values(self.name(), &[], values).map(|_| self.clone()),
         }
     }
 
@@ -193,5 +136,48 @@ mod tests {
         assert!(Spacetime::wormhole(1.0, -0.01, 0.05).is_err());
         assert!(Spacetime::wormhole(1.0, 0.01, 0.0).is_err());
         assert!(Spacetime::wormhole(1.0, f64::INFINITY, 0.05).is_err());
+    }
+
+    #[test]
+    fn parameters_follow_the_spacetime() {
+        let kerr = Spacetime::kerr(0.5, 0.2).expect("valid");
+        let names: Vec<&str> = kerr.parameters().iter().map(|p| p.name).collect();
+        assert_eq!(names, ["mass", "spin"]);
+        assert_eq!((kerr.parameters()[1].min, kerr.parameters()[1].max), (-1.5, 1.5));
+        assert!(Spacetime::Minkowski(Minkowski).parameters().is_empty());
+        let hole = Spacetime::schwarzschild(0.0).expect("valid");
+        assert_eq!(hole.parameters()[0].max, 1.0, "a massless hole can be given a mass");
+    }
+
+    /// Every spacetime rebuilt from its own values is itself.
+    #[test]
+    fn unchanged_values_rebuild_the_same_spacetime() {
+        for s in [
+            Spacetime::Minkowski(Minkowski),
+            Spacetime::schwarzschild(0.3).expect("valid"),
+            Spacetime::kerr(1.0, -0.7).expect("valid"),
+            Spacetime::ellis(2.0).expect("valid"),
+            Spacetime::reissner_nordstrom(1.0, 0.4).expect("valid"),
+            Spacetime::kerr_newman(1.0, 0.6, -0.5).expect("valid"),
+            Spacetime::wormhole(1.0, 0.01, 0.05).expect("valid"),
+        ] {
+            let values: Vec<(&str, f64)> = s.parameters().iter().map(|p| (p.name, p.value)).collect();
+            assert_eq!(s.with_parameters(&values), Ok(s.clone()));
+            assert_eq!(s.with_parameters(&[]), Ok(s));
+        }
+    }
+
+    #[test]
+    fn new_values_are_checked() {
+        let hole = Spacetime::schwarzschild(0.3).expect("valid");
+        assert_eq!(hole.with_parameters(&[("mass", 0.6)]), Spacetime::schwarzschild(0.6));
+        assert!(hole.with_parameters(&[("mass", -0.1)]).is_err());
+        assert!(hole.with_parameters(&[("mass", f64::NAN)]).is_err());
+        assert!(hole.with_parameters(&[("mass", 1.5)]).is_err(), "beyond the range");
+        let unknown = hole.with_parameters(&[("spin", 0.1)]).expect_err("unknown").message;
+        assert!(unknown.contains("no parameter \"spin\" (it has: mass)"), "{unknown}");
+        let kerr = Spacetime::kerr(0.5, 0.0).expect("valid");
+        assert!(kerr.with_parameters(&[("spin", 0.9)]).is_err(), "|spin| > mass");
+        assert_eq!(kerr.with_parameters(&[("spin", 0.4), ("mass", 1.2)]), Spacetime::kerr(1.2, 0.4));
     }
 }

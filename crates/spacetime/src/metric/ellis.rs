@@ -12,7 +12,8 @@
 //! its direction and neither region is mirrored. The throat is the sphere `|Y| = b₀` of both.
 
 use super::capabilities::{radial_frame, rest_on_chart, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
-use super::{Metric, Region, WorldPoint};
+use super::descriptor::{exactly, positive, MetricDescriptor, ParameterError, THROAT};
+use super::{Metric, Region, Spacetime, WorldPoint};
 use crate::disk::CircularOrbits;
 use crate::geodesic::plane::PlaneMetric;
 use crate::metric::schwarzschild::connect::Connector;
@@ -22,6 +23,27 @@ use crate::tensor::{normalize3, Covector4, Matrix4, Vector4};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ellis {
     pub throat: f64,
+}
+
+/// `type = "ellis"`: [`Spacetime::ellis`].
+pub static ELLIS: MetricDescriptor = MetricDescriptor {
+    name: "ellis",
+    description: "a traversable (Ellis) wormhole with throat radius `throat`",
+    parameters: &[THROAT],
+    constraint: None,
+    oriented: false,
+    build: |v| {
+        let [throat] = exactly(v)?;
+        Spacetime::ellis(throat)
+    },
+    values: |s| if let Spacetime::Ellis(w) = s { Some(vec![w.throat]) } else { None },
+};
+
+impl Spacetime {
+    /// The Ellis wormhole with `throat > 0`.
+    pub fn ellis(throat: f64) -> Result<Self, ParameterError> {
+        Ok(Spacetime::Ellis(Ellis::new(positive("throat", throat)?)))
+    }
 }
 
 impl Ellis {

@@ -12,12 +12,13 @@
 use super::capabilities::{
     tetrad_frame, tetrad_lapse, Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers,
 };
+use super::descriptor::{at_most_mass, exactly, non_negative, MetricDescriptor, ParameterError, MASS, SPIN};
 use super::kerr_newman::mino::MinoTracer;
 use super::kerr_schild::{hamilton_rhs, KerrSchild, KerrSchildPoint};
 use super::schwarzschild::connect::Connector;
 use super::spin_twin::SpinTwin;
 use super::user::Scalar;
-use super::{KerrNewman, Metric, Region};
+use super::{KerrNewman, Metric, Region, Spacetime};
 use crate::disk::CircularOrbits;
 use crate::geodesic::{State, TraceSettings};
 use crate::observer::Tetrad;
@@ -124,6 +125,29 @@ pub(super) fn spheroidal_rhs(m: f64, a: f64, q: f64, x: &Vector4, p: &Covector4)
     let e = [inv_w * (r * p[1] + a * p[2]), inv_w * (r * p[2] - a * p[1]), inv_r * p[3]];
     let dq = std::array::from_fn(|i| -(c * dr[i] + e[i]));
     hamilton_rhs(f, &k, &point.df(), &dq, p)
+}
+
+/// `type = "kerr"`: [`Spacetime::kerr`].
+pub static KERR: MetricDescriptor = MetricDescriptor {
+    name: "kerr",
+    description: "a rotating black hole, angular momentum `spin·mass`",
+    parameters: &[MASS, SPIN],
+    constraint: Some("|spin| ≤ mass"),
+    oriented: true,
+    build: |v| {
+        let [mass, spin] = exactly(v)?;
+        Spacetime::kerr(mass, spin)
+    },
+    values: |s| if let Spacetime::Kerr(h) = s { Some(vec![h.mass, h.spin]) } else { None },
+};
+
+impl Spacetime {
+    /// Kerr with `|spin| ≤ mass`; spin along +z, positive for counter-clockwise rotation seen
+    /// from +z.
+    pub fn kerr(mass: f64, spin: f64) -> Result<Self, ParameterError> {
+        let mass = non_negative("mass", mass)?;
+        Ok(Spacetime::Kerr(Kerr::new(mass, at_most_mass("spin", spin, mass)?)))
+    }
 }
 
 impl Kerr {

@@ -1,7 +1,8 @@
 //! Flat spacetime in Cartesian coordinates: `g = η`. Rays are straight lines.
 
 use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, Tracers};
-use super::{Metric, Region};
+use super::descriptor::{exactly, MetricDescriptor};
+use super::{Metric, Region, Spacetime};
 use crate::disk::CircularOrbits;
 use crate::geodesic::plane::PlaneMetric;
 use crate::metric::schwarzschild::connect::Connector;
@@ -10,6 +11,20 @@ use crate::tensor::{Covector4, Matrix4, Vector4, ETA};
 /// Minkowski spacetime.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Minkowski;
+
+/// `type = "minkowski"`: flat space, no parameters.
+pub static MINKOWSKI: MetricDescriptor = MetricDescriptor {
+    name: "minkowski",
+    description: "flat space",
+    parameters: &[],
+    constraint: None,
+    oriented: false,
+    build: |v| {
+        let [] = exactly(v)?;
+        Ok(Spacetime::Minkowski(Minkowski))
+    },
+    values: |s| matches!(s, Spacetime::Minkowski(_)).then(Vec::new),
+};
 
 impl Metric for Minkowski {
     fn metric(&self, _x: &Vector4) -> Matrix4 {

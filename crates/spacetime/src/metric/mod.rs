@@ -8,6 +8,7 @@
 mod builtin;
 mod capabilities;
 pub mod conformance;
+mod descriptor;
 mod ellis;
 pub mod expression;
 mod kerr;
@@ -15,29 +16,41 @@ pub mod kerr_newman;
 mod kerr_schild;
 mod minkowski;
 mod morris_thorne;
-mod parameters;
 mod reissner_nordstrom;
 pub mod schwarzschild;
 mod spin_twin;
 pub(crate) mod user;
 mod written;
 
-pub use builtin::{ParameterError, Spacetime};
+pub use builtin::{Spacetime, WRITTEN_NAME};
 pub use capabilities::{Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers};
-pub use ellis::Ellis;
-pub use kerr::Kerr;
-pub use kerr_newman::KerrNewman;
+pub use descriptor::{
+    at_most_mass, exactly, non_negative, positive, MetricDescriptor, Parameter, ParameterDescriptor, ParameterError,
+    Range, CHARGE, MASS, SPIN, THROAT,
+};
+pub use ellis::{Ellis, ELLIS};
+pub use kerr::{Kerr, KERR};
+pub use kerr_newman::{KerrNewman, KERR_NEWMAN};
 pub use kerr_schild::{KerrSchild, KerrSchildPoint};
-pub use minkowski::Minkowski;
-pub use morris_thorne::{Dneg, MorrisThorne, Radius, Shape, Wormhole};
-pub use parameters::Parameter;
-pub use reissner_nordstrom::ReissnerNordstrom;
-pub use schwarzschild::Schwarzschild;
+pub use minkowski::{Minkowski, MINKOWSKI};
+pub use morris_thorne::{Dneg, MorrisThorne, Radius, Shape, Wormhole, MIN_RELATIVE_LENSING_WIDTH, WORMHOLE};
+pub use reissner_nordstrom::{ReissnerNordstrom, REISSNER_NORDSTROM};
+pub use schwarzschild::{Schwarzschild, SCHWARZSCHILD};
 pub use spin_twin::SpinTwin;
 pub use user::{MetricFunction, Scalar, UserMetric};
 pub use written::{Coordinates, WrittenMetric, LAPSE_FLOOR};
 
 use crate::tensor::{contract, invert, quadratic, Covector4, Matrix4, Vector4};
+
+/// The built-in metrics, in the order scene-file errors and help texts list them: a new metric is
+/// its own file (its [`MetricDescriptor`]) and one line here.
+pub static SPACETIMES: &[&MetricDescriptor] =
+    &[&MINKOWSKI, &SCHWARZSCHILD, &KERR, &ELLIS, &REISSNER_NORDSTROM, &KERR_NEWMAN, &WORMHOLE];
+
+/// The built-in metric named `name` in scene files.
+pub fn find(name: &str) -> Option<&'static MetricDescriptor> {
+    SPACETIMES.iter().copied().find(|d| d.name == name)
+}
 
 /// One of the asymptotically flat regions of a spacetime. Black holes and flat space have only
 /// `Upper`; a wormhole has `Upper` (l > 0) and `Lower` (l < 0) on the two sides of its throat.

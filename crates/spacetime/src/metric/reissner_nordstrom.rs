@@ -13,8 +13,10 @@
 use super::capabilities::{
     radial_frame, radial_lapse, rest_outside_horizon, Capabilities, Forwards, LocalFrame, NoRest, Tracers,
 };
+use super::descriptor::{at_most_mass, exactly, non_negative, MetricDescriptor, ParameterError, CHARGE, MASS};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
+use super::Spacetime;
 use crate::disk::CircularOrbits;
 use crate::geodesic::plane::PlaneMetric;
 use crate::metric::schwarzschild::connect::Connector;
@@ -25,6 +27,28 @@ use crate::tensor::{norm3, spatial, Vector4};
 pub struct ReissnerNordstrom {
     pub mass: f64,
     pub charge: f64,
+}
+
+/// `type = "reissner-nordstrom"`: [`Spacetime::reissner_nordstrom`].
+pub static REISSNER_NORDSTROM: MetricDescriptor = MetricDescriptor {
+    name: "reissner-nordstrom",
+    description: "a charged, non-rotating black hole; horizon radius `mass + √(mass² − charge²)`",
+    parameters: &[MASS, CHARGE],
+    constraint: Some("|charge| ≤ mass"),
+    oriented: false,
+    build: |v| {
+        let [mass, charge] = exactly(v)?;
+        Spacetime::reissner_nordstrom(mass, charge)
+    },
+    values: |s| if let Spacetime::ReissnerNordstrom(h) = s { Some(vec![h.mass, h.charge]) } else { None },
+};
+
+impl Spacetime {
+    /// Reissner–Nordström with `|charge| ≤ mass`.
+    pub fn reissner_nordstrom(mass: f64, charge: f64) -> Result<Self, ParameterError> {
+        let mass = non_negative("mass", mass)?;
+        Ok(Spacetime::ReissnerNordstrom(ReissnerNordstrom::new(mass, at_most_mass("charge", charge, mass)?)))
+    }
 }
 
 impl ReissnerNordstrom {

@@ -103,11 +103,14 @@ impl WrittenMetric {
         scale: f64,
     ) -> Result<Self, ParameterError> {
         if !(MIN_SCALE..=MAX_SCALE).contains(&scale) {
-            return Err(ParameterError(format!(
-                "scale must lie in [{MIN_SCALE:e}, {MAX_SCALE:e}], got {scale:?}: the curvature length sets the \
+            return Err(ParameterError::new(
+                "scale",
+                format!(
+                    "must lie in [{MIN_SCALE:e}, {MAX_SCALE:e}], got {scale:?}: the curvature length sets the \
                  first steps and the escape radius (hundreds of it), which beyond these bounds fall outside what \
                  double-precision steps resolve, and rays are lost"
-            )));
+                ),
+            ));
         }
         let mut written = [[false; 4]; 4];
         let mut upper = Vec::with_capacity(components.len());
@@ -116,7 +119,7 @@ impl WrittenMetric {
             if b > 3 || written[a][b] {
                 let names = coordinates.names();
                 let name = |i: usize| names.get(i).copied().unwrap_or("?");
-                return Err(ParameterError(format!("g_{}{} is given twice", name(a), name(b))));
+                return Err(ParameterError::new("", format!("g_{}{} is given twice", name(a), name(b))));
             }
             (written[a][b], written[b][a]) = (true, true);
             upper.push((a, b, e));
@@ -563,7 +566,7 @@ pub(crate) mod tests {
         let names = Names { variables: Coordinates::Cartesian.names(), constants: &[] };
         let one = || Expression::compile("1", names).unwrap();
         let twice = WrittenMetric::new(Coordinates::Cartesian, vec![(0, 1, one()), (1, 0, one())], None, 1.0);
-        assert_eq!(twice, Err(ParameterError("g_tx is given twice".into())));
+        assert_eq!(twice, Err(ParameterError::new("", "g_tx is given twice")));
         assert!(WrittenMetric::new(Coordinates::Cartesian, vec![], None, 0.0).is_err());
     }
 }

@@ -10,11 +10,13 @@
 
 use super::capabilities::{tetrad_frame, tetrad_lapse};
 use super::capabilities::{Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers};
+use super::descriptor::{at_most_mass, exactly, non_negative, MetricDescriptor, ParameterError, CHARGE, MASS, SPIN};
 use super::kerr::{spheroidal, spheroidal_fields, spheroidal_rhs, spinning_rest};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::schwarzschild::connect::Connector;
 use super::spin_twin::SpinTwin;
 use super::Region;
+use super::Spacetime;
 use crate::disk::CircularOrbits;
 use crate::geodesic::{State, TraceSettings};
 use crate::tensor::{Covector4, Vector4};
@@ -28,6 +30,41 @@ pub struct KerrNewman {
     pub mass: f64,
     pub spin: f64,
     pub charge: f64,
+}
+
+/// `type = "kerr-newman"`: [`Spacetime::kerr_newman`].
+pub static KERR_NEWMAN: MetricDescriptor = MetricDescriptor {
+    name: "kerr-newman",
+    description: "a charged, rotating black hole; horizon radius `mass + √(mass² − spin² − charge²)`",
+    parameters: &[MASS, SPIN, CHARGE],
+    constraint: Some("spin² + charge² ≤ mass²"),
+    oriented: true,
+    build: |v| {
+        let [mass, spin, charge] = exactly(v)?;
+        Spacetime::kerr_newman(mass, spin, charge)
+    },
+    values: |s| if let Spacetime::KerrNewman(h) = s { Some(vec![h.mass, h.spin, h.charge]) } else { None },
+};
+
+impl Spacetime {
+    /// Kerr–Newman with `spin² + charge² ≤ mass²` (each of `|spin|` and `|charge|` at most the
+    /// mass, checked first so that the error names the one at fault); spin along +z as
+    /// [`Spacetime::kerr`]'s.
+    pub fn kerr_newman(mass: f64, spin: f64, charge: f64) -> Result<Self, ParameterError> {
+        let mass = non_negative("mass", mass)?;
+        let spin = at_most_mass("spin", spin, mass)?;
+        let charge = at_most_mass("charge", charge, mass)?;
+        if !(spin * spin + charge * charge <= mass * mass) {
+            return Err(ParameterError::new(
+                "charge",
+                format!(
+                    "spin and charge must satisfy spin² + charge² ≤ mass² = {}, got {spin}² + {charge}²",
+                    mass * mass
+                ),
+            ));
+        }
+        Ok(Spacetime::KerrNewman(KerrNewman::new(mass, spin, charge)))
+    }
 }
 
 impl KerrNewman {

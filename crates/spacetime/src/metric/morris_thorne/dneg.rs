@@ -5,6 +5,11 @@
 //! `dr/dl = (2/π) arctan x` is continuous at the mouths, `d²r/dl²` jumps there (`0` to
 //! `4/(π²M)`): the shape is C¹. The paper's lensing width is `𝒲 = 1.42953 M`.
 
+use super::super::descriptor::{
+    exactly, non_negative, positive, MetricDescriptor, ParameterDescriptor, ParameterError, Range, THROAT,
+};
+use super::super::Spacetime;
+use super::MorrisThorne;
 use super::{Radius, Shape};
 use std::f64::consts::{FRAC_2_PI, PI};
 
@@ -18,6 +23,73 @@ pub struct Dneg {
     pub throat: f64,
     pub length: f64,
     pub lensing_width: f64,
+}
+
+/// The narrowest lensing width of the *Interstellar* wormhole, as a fraction of its throat.
+pub const MIN_RELATIVE_LENSING_WIDTH: f64 = 1e-9;
+
+/// `type = "wormhole"`: [`Spacetime::wormhole`].
+pub static WORMHOLE: MetricDescriptor = MetricDescriptor {
+    name: "wormhole",
+    description:
+        "the wormhole of *Interstellar*: a Morris–Thorne wormhole with a cylindrical interior (James et al. 2015)",
+    parameters: &[
+        THROAT,
+        ParameterDescriptor {
+            name: "length",
+            meaning: "length 2a of the cylindrical interior",
+            unit: "length",
+            range: Range::NonNegative,
+            default: Some(0.0),
+            command_line_default: None,
+        },
+        ParameterDescriptor {
+            name: "lensing_width",
+            meaning: "lensing width 𝒲 of the mouths (the strongly lensed ring)",
+            unit: "length",
+            range: Range::Positive,
+            default: None,
+            command_line_default: None,
+        },
+    ],
+    constraint: Some("lensing_width ≥ 10⁻⁹·throat"),
+    oriented: false,
+    build: |v| {
+        let [throat, length, lensing_width] = exactly(v)?;
+        Spacetime::wormhole(throat, length, lensing_width)
+    },
+    values: |s| {
+        if let Spacetime::Wormhole(w) = s {
+            let Dneg { throat, length, lensing_width } = w.shape;
+            Some(vec![throat, length, lensing_width])
+        } else {
+            None
+        }
+    },
+};
+
+impl Spacetime {
+    /// The wormhole of *Interstellar* (James et al. 2015): throat radius `throat > 0`, interior
+    /// length `length ≥ 0`, lensing width `lensing_width ≥ 10⁻⁹ throat`.
+    pub fn wormhole(throat: f64, length: f64, lensing_width: f64) -> Result<Self, ParameterError> {
+        let throat = positive("throat", throat)?;
+        let length = non_negative("length", length)?;
+        let lensing_width = positive("lensing_width", lensing_width)?;
+        // The shape function's `ln(1 + x²)`, with `x ∝ ℓ/𝒲`, overflows for widths near 10⁻¹⁵⁰ of
+        // the distances a ray covers; long before, a narrower lensing region is a sharp edge that
+        // rays cannot tell from one of 10⁻⁹ of the throat.
+        let narrowest = MIN_RELATIVE_LENSING_WIDTH * throat;
+        if !(lensing_width >= narrowest) {
+            return Err(ParameterError::new(
+                "lensing_width",
+                format!(
+                    "must be a finite number ≥ {narrowest:e} ({MIN_RELATIVE_LENSING_WIDTH:e} of the throat radius), \
+                     got {lensing_width}: narrower is an edge no ray resolves in double precision"
+                ),
+            ));
+        }
+        Ok(Spacetime::Wormhole(MorrisThorne::new(Dneg::new(throat, length, lensing_width))))
+    }
 }
 
 impl Dneg {

@@ -18,7 +18,7 @@
 
 mod dneg;
 
-pub use dneg::Dneg;
+pub use dneg::{Dneg, MIN_RELATIVE_LENSING_WIDTH, WORMHOLE};
 
 use super::capabilities::{radial_frame, rest_on_chart, Capabilities, Forwards, LocalFrame, NoRest, Tracers};
 use super::{Metric, Region, WorldPoint};

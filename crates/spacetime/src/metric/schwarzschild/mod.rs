@@ -7,8 +7,10 @@
 use super::capabilities::{
     radial_frame, radial_lapse, rest_outside_horizon, Capabilities, Forwards, LocalFrame, NoRest, Tracers,
 };
+use super::descriptor::{exactly, non_negative, MetricDescriptor, ParameterError, MASS};
 use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
+use super::Spacetime;
 use crate::disk::CircularOrbits;
 use crate::geodesic::plane::PlaneMetric;
 use crate::tensor::{norm3, spatial, Vector4};
@@ -26,6 +28,27 @@ pub struct Schwarzschild {
 impl Schwarzschild {
     pub fn new(mass: f64) -> Self {
         Self { mass }
+    }
+}
+
+/// `type = "schwarzschild"`: [`Spacetime::schwarzschild`].
+pub static SCHWARZSCHILD: MetricDescriptor = MetricDescriptor {
+    name: "schwarzschild",
+    description: "a non-rotating black hole; horizon radius `2·mass`",
+    parameters: &[MASS],
+    constraint: None,
+    oriented: false,
+    build: |v| {
+        let [mass] = exactly(v)?;
+        Spacetime::schwarzschild(mass)
+    },
+    values: |s| if let Spacetime::Schwarzschild(h) = s { Some(vec![h.mass]) } else { None },
+};
+
+impl Spacetime {
+    /// Schwarzschild with `mass ≥ 0`.
+    pub fn schwarzschild(mass: f64) -> Result<Self, ParameterError> {
+        Ok(Spacetime::Schwarzschild(Schwarzschild::new(non_negative("mass", mass)?)))
     }
 }
 
