@@ -10,13 +10,13 @@ mod object;
 mod settings;
 mod sky;
 
+use crate::files::{ReadPolicy, Resource};
 use crate::reader::{num, Doc, Result, Table};
 use render::geometry::Vec3;
-use render::image_io::ImageData;
 use render::material::Material;
-use render::resource::{ReadPolicy, Resource};
 use render::scene::Scene;
 use render::sky::Sky;
+use render::texture::image_data::ImageData;
 use render::world::{Object, World};
 use spacetime::{Minkowski, Region, Spacetime};
 use std::collections::HashMap;
