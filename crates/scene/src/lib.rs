@@ -38,7 +38,6 @@
 mod build;
 mod error;
 pub mod files;
-mod gltf_import;
 mod nesting;
 mod reader;
 

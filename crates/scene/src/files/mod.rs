@@ -9,7 +9,15 @@
 //!
 //! Errors name the file as the scene wrote it and say why; none holds anything a file outside
 //! the policy holds.
+//!
+//! | module                 | reads                                                                      |
+//! |------------------------|----------------------------------------------------------------------------|
+//! | [`policy`]             | which files may be read, and reading them: regular files of bounded size   |
+//! | [`obj`]                | Wavefront OBJ meshes, into triangles with their placement baked in         |
+//! | [`image`]              | PNG, JPEG, OpenEXR and Radiance HDR images, into linear RGB                |
+//! | `gltf_import`          | glTF 2.0 files with their buffers and images: meshes, materials, lights…   |
 
+pub(crate) mod gltf_import;
 pub mod image;
 pub mod obj;
 pub mod policy;

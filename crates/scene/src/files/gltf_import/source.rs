@@ -6,7 +6,7 @@
 //! refuses unless they lie in a folder it allows; other schemes (`http:`…) are refused.
 
 use super::contained;
-use crate::files::{ReadError, ReadPolicy};
+use crate::files::policy::{ReadError, ReadPolicy};
 use std::path::{Path, PathBuf};
 
 /// Where the files a glTF file names are read from, and under which policy.

@@ -20,7 +20,7 @@ mod source;
 pub(crate) use material::GltfMaterial;
 pub(crate) use primitive::Primitive;
 
-use crate::files::{ReadPolicy, Resource};
+use super::{ReadPolicy, Resource};
 use render::color::Rgb;
 use render::geometry::Vec3;
 use render::transform::Transform;
