@@ -1,7 +1,7 @@
 //! # Image (`type = "image"`)
 //!
 //! A picture from a file (PNG, OpenEXR or Radiance HDR, read by the scene crate into an
-//! [`ImageData`](crate::texture::image_data::ImageData)):
+//! [`ImageData`]):
 //! 8- and 16-bit images are taken as sRGB-encoded and decoded to linear, floating-point images as linear.
 //! The image covers one unit square of the scaled coordinates `st` and repeats; `s` runs left to right and
 //! `t` **bottom to top** (the usual texture convention, so a photo on a wall is upright when the wall's `v`
