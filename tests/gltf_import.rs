@@ -274,7 +274,7 @@ fn a_base_colour_texel_shows_where_its_uv_says() {
         write_gltf(&dir, "textured", &[Mesh::square_facing_down(1.0).with_material(0)], json!([{ "mesh": 0 }]), extra);
     let s = load(&dir, &format!("{CAMERA}[[objects]]\ngltf = \"{file}\"\n")).unwrap();
     // uv (0, 0) is at (−1, 0, −1) and u grows with x: the texel centres (u = ¼, ¾) are at x = ∓½.
-    let linear = |c: f32| render::image_io::srgb_to_linear(c / 255.0);
+    let linear = |c: f32| render::texture::image_data::srgb_to_linear(c / 255.0);
     for (x, expected) in [(-0.5, [linear(255.0), linear(128.0), 0.0]), (0.5, [0.0, 0.0, 1.0])] {
         let ray = Ray::new(Vec3::new(x, -3.0, 0.2), Vec3::Y, 10.0);
         let (object, t) = s.world.intersect(Region::Upper, &ray).unwrap();

@@ -31,13 +31,13 @@
 //! Unknown keys are errors everywhere (a misspelt key would otherwise be silently ignored), and no
 //! input makes the loader panic.
 //!
-//! The files a scene names (meshes, images, glTF files and the files those name) are read under
-//! one policy (`render::resource`): inside the scene file's folder tree, or a folder that
-//! [`load_allowing`] is given; regular files only, of bounded size.
+//! The files a scene names (meshes, images, glTF files and the files those name) are read in one
+//! place, [`files`], under one policy ([`files::ReadPolicy`]): inside the scene file's folder
+//! tree, or a folder that [`load_allowing`] is given; regular files only, of bounded size.
 
 mod build;
 mod error;
-mod gltf_import;
+pub mod files;
 mod nesting;
 mod reader;
 
@@ -45,8 +45,8 @@ pub use build::spacetime_table;
 pub use error::SceneError;
 
 use error::io_message;
+use files::ReadPolicy;
 use reader::Doc;
-use render::resource::ReadPolicy;
 use spacetime::metric::{MetricDescriptor, SPACETIMES};
 use std::path::{Path, PathBuf};
 use toml::de::DeTable;

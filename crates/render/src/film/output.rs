@@ -14,6 +14,11 @@
 //! Metadata (what made the image: scene, settings, seed, samples, program version) goes into
 //! PNG `iTXt` chunks and EXR header attributes, each key prefixed with [`METADATA_PREFIX`];
 //! Radiance HDR has no place for it. [`read_metadata`] reads it back.
+//!
+//! The renderer's own outputs, these images and its checkpoints ([`super::write_checkpoint`]),
+//! are the film's to write (and read back): they are the only files the render crate touches.
+//! The files a scene names (meshes, textures, skies, glTF files) are read by the scene crate
+//! (`scene::files`), under its read policy.
 
 use std::ffi::OsString;
 use std::fmt;

@@ -14,8 +14,8 @@
 //! inside out.
 
 use crate::geometry::Vec3;
-use crate::image_io::ImageData;
 use crate::shape::SurfaceHit;
+use crate::texture::image_data::ImageData;
 use std::sync::Arc;
 
 #[derive(Clone, Debug)]

@@ -53,7 +53,7 @@ pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use instance::{Instance, InstancedMesh};
-pub use mesh::{load_obj, MeshDefect, MeshError, TriangleMesh};
+pub use mesh::{MeshDefect, TriangleMesh};
 pub use plane::Plane;
 pub use rectangle::Rectangle;
 pub use sphere::Sphere;

@@ -33,8 +33,8 @@
 use super::SkyFrame;
 use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
-use crate::image_io::{ImageData, WrapMode};
 use crate::sampling::PiecewiseConstant2D;
+use crate::texture::image_data::{ImageData, WrapMode};
 use std::f64::consts::{FRAC_1_PI, PI};
 use std::sync::Arc;
 

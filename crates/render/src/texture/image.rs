@@ -1,6 +1,7 @@
 //! # Image (`type = "image"`)
 //!
-//! A picture from a file (PNG, OpenEXR or Radiance HDR, loaded by [`image_io`](crate::image_io)):
+//! A picture from a file (PNG, OpenEXR or Radiance HDR, read by the scene crate into an
+//! [`ImageData`]):
 //! 8- and 16-bit images are taken as sRGB-encoded and decoded to linear, floating-point images as linear.
 //! The image covers one unit square of the scaled coordinates `st` and repeats; `s` runs left to right and
 //! `t` **bottom to top** (the usual texture convention, so a photo on a wall is upright when the wall's `v`
@@ -18,7 +19,7 @@
 //! ```
 
 use crate::color::Rgb;
-use crate::image_io::{ImageData, WrapMode};
+use crate::texture::image_data::{ImageData, WrapMode};
 
 /// The image's colour at scaled coordinates `st` (repeating, `t` up).
 pub fn eval(image: &ImageData, st: [f64; 2]) -> Rgb {
@@ -29,18 +30,14 @@ pub fn eval(image: &ImageData, st: [f64; 2]) -> Rgb {
 mod tests {
     use super::*;
     use crate::geometry::Vec3;
-    use crate::image_io::tests::temp_path;
     use crate::texture::Texture;
     use std::sync::Arc;
 
     #[test]
-    fn loads_a_png_and_is_upright() {
-        // 2×2 PNG: top row red, green; bottom row blue, white (sRGB 255 and 0 are exact in linear).
-        let path = temp_path("texture.png");
-        let png = image::RgbImage::from_raw(2, 2, vec![255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255]).unwrap();
-        png.save(&path).unwrap();
-        let image = Arc::new(ImageData::load(&path).unwrap());
-        std::fs::remove_file(&path).ok();
+    fn is_upright() {
+        // 2×2, rows from the top as files store them (the scene crate's reader keeps that order):
+        // top row red, green; bottom row blue, white.
+        let image = Arc::new(ImageData::new(2, 2, vec![Rgb::X, Rgb::Y, Rgb::Z, Rgb::ONE]).unwrap());
         let t = Texture::Image { image, uv_scale: [1.0, 1.0] };
         let at = |u, v| t.eval([u, v], Vec3::ZERO);
         // Pixel centres: v = 0.75 is the top row.

@@ -15,18 +15,22 @@
 //!
 //! Colours are linear RGB. Procedural textures are evaluated at a point (no filtering); path tracing
 //! with many samples per pixel antialiases them.
+//!
+//! [`image_data`] holds the in-memory raster that image textures, environment maps and normal maps
+//! look up; the scene crate reads the files into it.
 
 pub mod checker;
 pub mod earth;
 pub mod grid;
 pub mod image;
+pub mod image_data;
 
 pub use grid::{GridAxis, GridHighlight};
 
 use crate::color::Rgb;
 use crate::geometry::Vec3;
-use crate::image_io::ImageData;
 use crate::spectrum::LiftedReflectance;
+use image_data::ImageData;
 use std::sync::Arc;
 
 /// A colour over a surface. See the module documentation and each variant's file.

@@ -14,7 +14,7 @@
 //! spot [`Profile`]: intensity `I·s(cos θ)` from the disk's area `π r²`.
 
 use super::Builder;
-use crate::gltf_import::{self, GltfScene};
+use crate::files::gltf_import::{self, GltfScene};
 use crate::reader::{Node, Result, Table};
 use render::color::Rgb;
 use render::geometry::Vec3;

@@ -4,9 +4,9 @@ use super::Builder;
 use crate::error::suggest;
 use crate::reader::{fmt_rgb, num, Kind, Node, Result, Table};
 use render::color::Rgb;
-use render::image_io::ImageData;
 use render::material::{ConductorFresnel, Dispersion, Material};
 use render::texture::earth::Earth;
+use render::texture::image_data::ImageData;
 use render::texture::{GridAxis, GridHighlight, Texture};
 use std::sync::Arc;
 
@@ -123,7 +123,7 @@ impl Builder<'_> {
         if let Some(image) = self.images.get(resource.path()) {
             return Ok(Arc::clone(image));
         }
-        let image = Arc::new(ImageData::load_file(&resource).map_err(|e| file.err(e.to_string()))?);
+        let image = Arc::new(crate::files::load_image(&resource).map_err(|e| file.err(e.to_string()))?);
         self.images.insert(resource.path().to_path_buf(), Arc::clone(&image));
         Ok(image)
     }

@@ -13,14 +13,14 @@ mod spacetime;
 
 pub use spacetime::spacetime_table;
 
+use crate::files::{ReadPolicy, Resource};
 use crate::reader::{Doc, Result, Table};
 use ::spacetime::metric::MetricDescriptor;
 use ::spacetime::Region;
-use render::image_io::ImageData;
 use render::material::Material;
-use render::resource::{ReadPolicy, Resource};
 use render::scene::Scene;
 use render::sky::Sky;
+use render::texture::image_data::ImageData;
 use render::world::{Object, World};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

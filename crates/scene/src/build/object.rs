@@ -2,12 +2,13 @@
 
 use super::sky::radiance;
 use super::Builder;
+use crate::files::load_obj;
 use crate::reader::{fmt_vec, num, Kind, Loc, Node, Result, Table};
 use render::color::Rgb;
 use render::emission::{BlackbodyLight, Profile, Radiance};
 use render::geometry::Vec3;
 use render::material::Material;
-use render::shape::{load_obj, Shape, ShapeError};
+use render::shape::{Shape, ShapeError};
 use render::texture::Texture;
 use render::transform::Transform;
 use render::world::{Emission, Object};

@@ -1,12 +1,12 @@
 //! The bytes a glTF file's URIs point at: a `data:` URI's own, or a file's, read under the
-//! scene's read policy (see `render::resource`) relative to the glTF file's folder.
+//! scene's read policy (see [`crate::files::policy`]) relative to the glTF file's folder.
 //!
 //! A URI that is not `data:` is percent-decoded before the policy sees it, so that `%2E%2E/`
 //! is the `../` it means and cannot slip past. `file:` URIs name absolute paths, which the policy
 //! refuses unless they lie in a folder it allows; other schemes (`http:`…) are refused.
 
 use super::contained;
-use render::resource::{ReadError, ReadPolicy};
+use crate::files::policy::{ReadError, ReadPolicy};
 use std::path::{Path, PathBuf};
 
 /// Where the files a glTF file names are read from, and under which policy.

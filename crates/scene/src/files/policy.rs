@@ -79,7 +79,7 @@ impl std::error::Error for ReadError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             Self::Io(e) => Some(e),
-            _ => None,
+            Self::NotFound | Self::Outside | Self::NotAFile | Self::TooLarge { .. } | Self::TooShort { .. } => None,
         }
     }
 }

@@ -20,9 +20,9 @@ mod source;
 pub(crate) use material::GltfMaterial;
 pub(crate) use primitive::Primitive;
 
+use super::{ReadPolicy, Resource};
 use render::color::Rgb;
 use render::geometry::Vec3;
-use render::resource::{ReadPolicy, Resource};
 use render::transform::Transform;
 use source::Sources;
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! the photon-mapping figures in BENCHMARKS.md:
 //!
 //! ```sh
-//! cargo run --release -p nullpath-render --example image_rmse -- [--crop X0,Y0,X1,Y1] REF_A.exr REF_B.exr TEST.exr…
+//! cargo run --release -p nullpath-scene --example image_rmse -- [--crop X0,Y0,X1,Y1] REF_A.exr REF_B.exr TEST.exr…
 //! ```
 //!
 //! `--crop` restricts every figure to the pixels `X0 ≤ x < X1`, `Y0 ≤ y < Y1`.
@@ -11,9 +11,10 @@
 //! noise has per-pixel variance `E[(A − B)²] / 4`, which inflates every test image's squared
 //! error against it; the corrected RMSE subtracts it: `√(MSE − E[(A − B)²] / 4)`.
 //! Errors are over all pixels and the three channels of linear radiance.
+//!
+//! It lives in the scene crate because that is where image files are read (`scene::files`).
 
 use render::color::Rgb;
-use render::image_io::ImageData;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -22,7 +23,7 @@ type Crop = [usize; 4];
 
 /// The image's pixels inside `crop` (all of them without one), row by row.
 fn load(path: &str, crop: Option<Crop>) -> Result<Vec<Rgb>, String> {
-    let image = ImageData::load(Path::new(path)).map_err(|e| e.to_string())?;
+    let image = scene::files::load_image_path(Path::new(path)).map_err(|e| e.to_string())?;
     let (w, h) = (image.width(), image.height());
     let [x0, y0, x1, y1] = crop.unwrap_or([0, 0, w, h]);
     if !(x0 < x1 && x1 <= w && y0 < y1 && y1 <= h) {
