@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
 use render::film::noise::relative_rmse;
-use render::renderer::{render, Goal, NoiseTarget, Outcome, Part, Renderer};
+use render::renderer::{progressive, render, Goal, NoiseTarget, Outcome, Part};
 use std::sync::atomic::AtomicBool;
 
 /// `scene` at `width × height`, depth at most 4, rendered to `target` by the renderer's
@@ -18,13 +18,13 @@ fn check(name: &str, (width, height): (u32, u32), target: f64, adaptive: bool) {
     scene.settings.height = height;
     scene.settings.max_depth = scene.settings.max_depth.min(4);
     let cancel = AtomicBool::new(false);
-    let renderer = Renderer::new(&scene, Part::WHOLE, None).unwrap();
     let goal = Goal { spp: 1 << 14, noise: Some(NoiseTarget { relative_error: target, adaptive }) };
-    let stats = renderer.run(goal, &cancel, &|_, _| {});
+    let renderer = progressive(&scene, Part::WHOLE, goal, None).unwrap();
+    let stats = renderer.run(&cancel, &|_, _| {});
     assert_eq!(stats.outcome, Outcome::Converged, "{name}: {stats:?}");
     let estimate = stats.relative_error.unwrap();
     assert!(estimate <= target, "{name}: estimate {estimate}");
-    let (film, _, _) = renderer.into_state();
+    let film = renderer.into_film();
 
     scene.settings.seed = 0x5eed;
     scene.settings.spp = 16 * stats.spp_max.min(256);

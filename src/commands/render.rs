@@ -7,14 +7,14 @@ use super::provenance::{self, Source};
 use super::Failure;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
-use progressive::{PathRender, Progressive};
 use render::film::{
-    check_output_path, check_writable, read_checkpoint, write_file_atomically, write_image_with_data, DataLayer, Film,
-    ImageFormat, Metadata,
+    check_output_path, check_writable, write_file_atomically, write_image_with_data, DataLayer, Film, ImageFormat,
+    Metadata,
 };
-use render::integrator::photon::{PhotonRenderer, SppmResume, SppmState};
 use render::integrator::PathStats;
-use render::renderer::{render, Goal, NoiseTarget, Outcome, Part, RenderStats, Renderer, Resume};
+use render::renderer::{
+    progressive, render, Checkpointed, Goal, NoiseTarget, Outcome, Part, Progressive, RenderStats, Resume, Unit,
+};
 use render::scene::Scene;
 use render::settings::IntegratorKind;
 use std::io::IsTerminal;
@@ -24,7 +24,6 @@ use std::sync::{Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 mod data_only;
-mod progressive;
 
 /// The scene rendered when none is named.
 pub const DEFAULT_SCENE: &str = include_str!("../../scenes/room-black-hole.toml");
@@ -475,8 +474,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
     }
     let part = args.part.unwrap_or(Part::WHOLE);
     let goal = args.goal(&scene)?;
-    let photon = scene.settings.integrator == IntegratorKind::Photon;
-    if photon {
+    if scene.settings.integrator == IntegratorKind::Photon {
         refuse_for_photon_mapping(args)?;
     }
     if part != Part::WHOLE && goal.noise.is_some() {
@@ -492,14 +490,9 @@ pub fn run(args: &Args) -> Result<(), Failure> {
     args.options.check_memory(&scene, true)?;
     let interrupts = Interrupts::install()?;
     let command = Command { args, scene: &scene, source: &source, goal, part, pool: &pool, interrupts: &interrupts };
-    if photon {
-        let resume = args.resume.as_deref().map(|path| command.photon_resume(path)).transpose()?;
-        command.drive(&PhotonRenderer::new(&scene, resume))
-    } else {
-        let resume = args.resume.as_deref().map(|path| command.resume(path)).transpose()?;
-        let renderer = Renderer::new(&scene, part, resume).map_err(|e| e.to_string())?;
-        command.drive(&PathRender { renderer, goal })
-    }
+    let resume = args.resume.as_deref().map(|path| command.resume(path)).transpose()?;
+    let renderer = progressive(&scene, part, goal, resume).map_err(|e| e.to_string())?;
+    command.drive(renderer.as_ref())
 }
 
 /// Data channels (`[render] channels`) go into the one EXR image of a whole render.
@@ -562,28 +555,23 @@ impl Command<'_> {
         let args = self.args;
         let checkpoint = args.checkpoint_path();
         let metadata = |stats: &RenderStats| self.metadata(stats);
-        let save = || render.checkpoint(&checkpoint, &metadata);
+        let save = || write_checkpoint(render, &checkpoint, &metadata);
         let stats = self.run_with_checkpoints(render, &save);
         if let Some(reason) = self.interrupts.reason().filter(|_| !stats.is_complete()) {
-            return interrupted(
-                args,
-                self.scene,
-                &stats,
-                reason,
-                render.checkpoint(&checkpoint, &|_| metadata(&stats)),
-            );
+            let saved = write_checkpoint(render, &checkpoint, &|_| metadata(&stats));
+            return interrupted(args, self.scene, &stats, (reason, render.unit()), saved);
         }
         if args.part.is_none() {
             let data = (self.scene.settings.has_data_channels())
                 .then(|| render::renderer::data_layer(self.scene, &render::renderer::propagator(self.scene)));
-            let (film, tonemap) = (render.snapshot_film(), &self.scene.settings.tonemap);
+            let (film, tonemap) = (render.film(), &self.scene.settings.tonemap);
             write_image_with_data(&film, data.as_ref(), &args.output, tonemap, &metadata(&stats))
                 .map_err(|e| e.to_string())?;
         } else {
-            render.checkpoint(&args.output, &|_| metadata(&stats))?;
+            write_checkpoint(render, &args.output, &|_| metadata(&stats))?;
         }
         if args.checkpoint.is_some() {
-            render.checkpoint(&checkpoint, &|_| metadata(&stats))?;
+            write_checkpoint(render, &checkpoint, &|_| metadata(&stats))?;
         } else if args.resume.as_deref().is_some_and(|resume| same_file(resume, &checkpoint)) {
             // The work is in the image now; the checkpoint an interruption left is done with.
             let _ = std::fs::remove_file(&checkpoint);
@@ -650,22 +638,13 @@ impl Command<'_> {
         })
     }
 
-    /// The path tracer's checkpoint at `path`, if this render continues it.
+    /// The checkpoint at `path` (as the scene's light transport writes it), if this render
+    /// continues it.
     fn resume(&self, path: &Path) -> Result<Resume, String> {
-        let checkpoint = read_checkpoint(path).map_err(|e| format!("--resume: {e}"))?;
-        let film = &checkpoint.film;
-        let reached = film.bounds().pixels().map(|(x, y)| film.taken_at(x, y)).max().unwrap_or(0);
-        let (paths, seconds) =
-            self.check_continues(path, &checkpoint.metadata, (film.width(), film.height()), reached)?;
-        Ok(Resume { film: checkpoint.film, targets: checkpoint.targets, paths, seconds })
-    }
-
-    /// Photon mapping's checkpoint at `path`, if this render continues it.
-    fn photon_resume(&self, path: &Path) -> Result<SppmResume, String> {
-        let (state, metadata) = SppmState::read(path).map_err(|e| format!("--resume: {e}"))?;
-        let size = (state.width(), state.height());
-        let (paths, seconds) = self.check_continues(path, &metadata, size, state.iterations())?;
-        Ok(SppmResume { state, paths, seconds })
+        let (state, metadata) =
+            Checkpointed::read(path, self.scene.settings.integrator).map_err(|e| format!("--resume: {e}"))?;
+        let (paths, seconds) = self.check_continues(path, &metadata, state.size(), state.reached())?;
+        Ok(Resume { state, paths, seconds })
     }
 
     /// Whether the checkpoint at `path` with `metadata`, of `size` and `reached` samples (or
@@ -692,12 +671,23 @@ impl Command<'_> {
     }
 }
 
-/// Reports an interrupted render whose checkpoint was (or failed to be) saved.
+/// Writes `render`'s checkpoint to `path` (see [`Progressive::write_checkpoint`]), its failure
+/// worded for the command line.
+fn write_checkpoint(
+    render: &dyn Progressive,
+    path: &Path,
+    metadata: &dyn Fn(&RenderStats) -> Metadata,
+) -> Result<(), String> {
+    render.write_checkpoint(path, metadata).map_err(|e| format!("checkpoint: {e}"))
+}
+
+/// Reports a render stopped for `reason`, counting in `unit`, whose checkpoint was (or failed to
+/// be) saved.
 fn interrupted(
     args: &Args,
     scene: &Scene,
     stats: &RenderStats,
-    reason: StopReason,
+    (reason, unit): (StopReason, Unit),
     saved: Result<(), String>,
 ) -> Result<(), Failure> {
     saved?;
@@ -717,9 +707,8 @@ fn interrupted(
     // Asked for, and nothing lost: news, not an error; the exit status tells scripts it stopped.
     Err(Failure::stopped(
         format!(
-            "{why} at {spp} {}; the work is in the checkpoint {} ({} was not touched). \
+            "{why} at {spp} {unit}; the work is in the checkpoint {} ({} was not touched). \
              Continue with the same command and --resume {}",
-            if scene.settings.integrator == IntegratorKind::Photon { "iterations" } else { "samples per pixel" },
             checkpoint.display(),
             args.output.display(),
             checkpoint.display()

@@ -1,35 +1,38 @@
-//! Renders a scene into a film progressively: in passes over the whole image, each pass taking
-//! every pixel on to its sample target, tiles in parallel. Every sample has its own random
-//! stream keyed by (seed, pixel, sample) and each pixel's sums grow one sample at a time in
-//! sample order (see [`Film::tile`]), so the image is bit-identical whatever the thread count,
-//! however the samples fall into passes, and whether or not the render was stopped and resumed
-//! on the way. A render stops within one sample of being cancelled, keeping every finished
-//! sample; [`Renderer::snapshot`] takes a consistent copy of the state at any moment, for
-//! checkpoints.
+//! Renders a scene progressively, by whichever light transport its settings name, behind one
+//! interface, [`Progressive`]: run to a [`Goal`] on the current rayon pool, stopped within a
+//! sample (a photon chunk) when cancelled, copied as it stands from another thread
+//! ([`Progressive::snapshot`]), checkpointed while it runs, and continued from a checkpoint
+//! ([`Resume`]) bit for bit. The transports behind it:
 //!
-//! A render's goal is a number of samples per pixel, or a noise target ([`NoiseTarget`]): the
-//! passes then stop once the film's estimated relative error (see [`crate::film::noise`]) is
-//! below it, and in adaptive mode each pass sends samples only where they lower the error most.
+//! - path tracing (`path`, [`IntegratorKind::Path`] and [`IntegratorKind::BruteForce`]): passes
+//!   of pixel samples, to a number of samples per pixel or to a noise target ([`NoiseTarget`]),
+//!   of the whole image or of a [`Part`] of it;
+//! - photon mapping (`sppm`, [`IntegratorKind::Photon`]): SPPM iterations over the whole image.
+//!
+//! Dependencies run one way: the renderer drives the integrators ([`crate::integrator`]), which
+//! know nothing of it. [`progressive`] is the one place that picks the transport, and
+//! [`Checkpointed::read`] the one that picks a checkpoint's format.
 //!
 //! A render can be split into [`Part`]s, each a fixed share of the tiles: parts are independent
 //! processes, and their films put together are the film of the whole render, bit for bit.
 
 mod adaptive;
 mod data;
+mod path;
+mod sppm;
 
 pub use data::data_layer;
 
-use crate::color::Rgb;
-use crate::film::{noise, Film, FilmTooLarge, TileBounds};
-use crate::integrator::{photon, PathIntegrator, PathStats};
+use crate::film::{read_checkpoint, CheckpointError, Film, FilmTooLarge, ImageWriteError, Metadata, TileBounds};
+use crate::integrator::photon::{self, SppmState};
+use crate::integrator::PathStats;
 use crate::propagator::Propagator;
-use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::settings::{Connector, IntegratorKind};
-use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Mutex, OnceLock};
-use std::time::{Duration, Instant};
+use path::{PathRender, PathResume};
+use sppm::{SppmRender, SppmResume};
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
 
 /// Pixels per tile side: the unit of parallel work and of [`Part`]s.
 const TILE: u32 = 16;
@@ -37,14 +40,10 @@ const TILE: u32 = 16;
 /// Samples every pixel takes before a noise target's estimate is trusted.
 pub const WARM_UP_SPP: u32 = 16;
 
-/// A pass is split into rounds of at most this long (once the rounds' size has adapted), so
-/// that snapshots and the progress bar stay fresh even when a pass takes hours.
-const ROUND: Duration = Duration::from_secs(2);
-
 /// Why a render stopped.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Outcome {
-    /// Every pixel has its samples.
+    /// Every pixel has its samples (the render its iterations).
     #[default]
     Finished,
     /// The noise target was reached.
@@ -66,7 +65,8 @@ pub struct RenderStats {
     /// Fewest and most samples of a pixel (iterations, for the photon integrator).
     pub spp_min: u32,
     pub spp_max: u32,
-    /// The film's estimated relative error where it can be estimated (see [`noise`]).
+    /// The film's estimated relative error where it can be estimated (see
+    /// [`crate::film::noise`]; never for photon mapping, whose error is mostly bias).
     pub relative_error: Option<f64>,
 }
 
@@ -79,7 +79,8 @@ impl RenderStats {
 /// How far to take a render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Goal {
-    /// Samples per pixel; with a noise target, the most a pixel takes.
+    /// Samples per pixel (iterations, for photon mapping: see [`Unit`]); with a noise target,
+    /// the most a pixel takes.
     pub spp: u32,
     pub noise: Option<NoiseTarget>,
 }
@@ -179,241 +180,195 @@ pub fn propagator(scene: &Scene) -> Propagator {
     }
 }
 
-/// Renders `scene` to its settings' samples per pixel on the current rayon pool. `cancel` stops
-/// it within a sample; `progress` is told `(samples done, samples total)` as passes go.
+/// Renders `scene` to its settings' samples per pixel (iterations, for photon mapping) on the
+/// current rayon pool. `cancel` stops it within a sample; `progress` is told `(done, total)` as
+/// it goes (see [`Progressive::run`]).
+///
+/// # Panics
+/// If the render cannot start (see [`StartError`]).
 pub fn render(scene: &Scene, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> (Film, RenderStats) {
-    if scene.settings.integrator == IntegratorKind::Photon {
-        let renderer = photon::PhotonRenderer::new(scene, None);
-        let stats = renderer.run(cancel, progress);
-        return (renderer.film(&renderer.snapshot().0), stats);
+    let renderer =
+        progressive(scene, Part::WHOLE, Goal::spp(scene.settings.spp), None).unwrap_or_else(|e| panic!("{e}"));
+    let stats = renderer.run(cancel, progress);
+    (renderer.into_film(), stats)
+}
+
+/// A render in progress, by any light transport: see the module docs. Every method but
+/// [`Progressive::run`] may be called from another thread while it runs.
+pub trait Progressive: Sync {
+    /// Renders on the current rayon pool until the goal is reached or `cancel` is set (answered
+    /// within a sample, or a photon chunk: an unfinished iteration is dropped); `progress` is
+    /// told `(done, total)` in the render's [`Unit`]s (samples of all the part's pixels, or
+    /// iterations), the total being that of the pass in progress.
+    fn run(&self, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> RenderStats;
+
+    /// A copy of the image as it stands, every pixel with exactly the samples (iterations) it
+    /// has finished, and the statistics so far (their outcome [`Outcome::Interrupted`] unless
+    /// the goal is reached).
+    fn snapshot(&self) -> (Film, RenderStats);
+
+    /// The image as it stands: [`Progressive::snapshot`]'s film, without the statistics.
+    fn film(&self) -> Film;
+
+    /// Writes a consistent copy of the state as it stands to the checkpoint `path` (the render
+    /// goes on meanwhile), with the metadata `metadata` makes from the copy's statistics. The
+    /// file is what [`Checkpointed::read`] reads back for the same transport.
+    fn write_checkpoint(&self, path: &Path, metadata: &dyn Fn(&RenderStats) -> Metadata)
+        -> Result<(), ImageWriteError>;
+
+    /// The image, without copying it (the render is done with).
+    fn into_film(self: Box<Self>) -> Film;
+
+    /// What the render counts its progress in.
+    fn unit(&self) -> Unit;
+}
+
+/// What a render counts its progress in: [`RenderStats::spp_min`] and `spp_max`, a [`Goal`]'s
+/// `spp` and a checkpoint's [`Checkpointed::reached`] are in it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unit {
+    /// Camera samples of each pixel (path tracing).
+    SamplesPerPixel,
+    /// Iterations over the whole image (photon mapping), each one camera path per pixel and a
+    /// pass of photons.
+    Iterations,
+}
+
+impl std::fmt::Display for Unit {
+    /// As a sentence says it: "at 64 samples per pixel", "at 64 iterations".
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Unit::SamplesPerPixel => "samples per pixel",
+            Unit::Iterations => "iterations",
+        })
     }
-    let renderer = Renderer::new(scene, Part::WHOLE, None).unwrap_or_else(|e| panic!("{e}"));
-    let stats = renderer.run(Goal::spp(scene.settings.spp), cancel, progress);
-    (renderer.into_state().0, stats)
 }
 
-/// What a render has so far: the film, and each pixel's target in the pass in progress.
-struct State {
-    film: Film,
-    targets: Vec<u32>,
-    paths: PathStats,
+/// Why a render cannot start.
+#[derive(Debug)]
+pub enum StartError {
+    /// The film's memory cannot be allocated.
+    FilmTooLarge(FilmTooLarge),
+    /// Photon mapping in a spacetime whose light cannot be followed forwards in time (see
+    /// [`photon::supports`]); scene files are checked for it when loaded.
+    Backwards { spacetime: &'static str },
+    /// A goal or a part that photon mapping cannot render: its iterations share every photon
+    /// between all pixels, so a part would not be the whole render's part, and its error is mostly
+    /// bias, which no noise estimate measures. (The command line refuses both with its own words
+    /// before a render starts.)
+    WholeIterationsOnly,
 }
 
-/// A progressive path-tracing render of a scene (or of a part of it): see the module docs. The
-/// photon integrator renders by iterations of its own, see [`photon::PhotonRenderer`].
-pub struct Renderer<'s> {
-    scene: &'s Scene,
-    propagator: Propagator,
-    /// The tiles of the part this render makes.
-    tiles: Vec<TileBounds>,
-    state: Mutex<State>,
-    /// Seconds of earlier runs that this one continues.
-    earlier_seconds: f64,
-    /// When [`Renderer::run`] started.
-    started: OnceLock<Instant>,
+impl std::fmt::Display for StartError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StartError::FilmTooLarge(e) => e.fmt(f),
+            StartError::Backwards { spacetime } => {
+                write!(f, "photon mapping cannot trace light forwards in the {spacetime} spacetime")
+            }
+            StartError::WholeIterationsOnly => f.write_str(
+                "photon mapping renders the whole image to a number of iterations, not a part or a noise target",
+            ),
+        }
+    }
 }
 
-/// Where a resumed render starts: the film and targets of a snapshot, what it counted, and how
+impl std::error::Error for StartError {}
+
+/// The state a checkpoint keeps, in its transport's terms: what a render continues from.
+pub enum Checkpointed {
+    /// The path tracer's: the film, each pixel with the samples its sums hold, and each pixel's
+    /// target in the pass in progress.
+    Passes { film: Film, targets: Vec<u32> },
+    /// Photon mapping's: every pixel's estimate after the iterations finished.
+    Iterations(SppmState),
+}
+
+impl Checkpointed {
+    /// Reads the checkpoint at `path` as `transport` writes it (see
+    /// [`Progressive::write_checkpoint`]), and the metadata its render wrote into it; refuses
+    /// damaged files and another transport's checkpoints.
+    pub fn read(path: &Path, transport: IntegratorKind) -> Result<(Self, Metadata), CheckpointError> {
+        match transport {
+            IntegratorKind::Path | IntegratorKind::BruteForce => {
+                let checkpoint = read_checkpoint(path)?;
+                Ok((Checkpointed::Passes { film: checkpoint.film, targets: checkpoint.targets }, checkpoint.metadata))
+            }
+            IntegratorKind::Photon => {
+                let (state, metadata) = SppmState::read(path)?;
+                Ok((Checkpointed::Iterations(state), metadata))
+            }
+        }
+    }
+
+    /// Width and height of its image.
+    pub fn size(&self) -> (u32, u32) {
+        match self {
+            Checkpointed::Passes { film, .. } => (film.width(), film.height()),
+            Checkpointed::Iterations(state) => (state.width(), state.height()),
+        }
+    }
+
+    /// The most a pixel has of the render's [`Unit`]: samples (of the pixels that have the
+    /// most), or iterations.
+    pub fn reached(&self) -> u32 {
+        match self {
+            Checkpointed::Passes { film, .. } => {
+                film.bounds().pixels().map(|(x, y)| film.taken_at(x, y)).max().unwrap_or(0)
+            }
+            Checkpointed::Iterations(state) => state.iterations(),
+        }
+    }
+}
+
+/// Where a continued render starts: the state of a checkpoint, what its render counted, and how
 /// long it had run.
 pub struct Resume {
-    pub film: Film,
-    pub targets: Vec<u32>,
+    pub state: Checkpointed,
     pub paths: PathStats,
     pub seconds: f64,
 }
 
-impl<'s> Renderer<'s> {
-    /// A render of `part` of `scene`, from scratch or continuing `resume` (whose film must have
-    /// the scene's size). Fails when the film's memory cannot be allocated.
-    ///
-    /// # Panics
-    /// If the scene asks for the photon integrator, or `resume` does not fit the scene.
-    pub fn new(scene: &'s Scene, part: Part, resume: Option<Resume>) -> Result<Self, FilmTooLarge> {
-        assert_ne!(
-            scene.settings.integrator,
-            IntegratorKind::Photon,
-            "photon mapping renders by photon::PhotonRenderer"
-        );
-        let (width, height) = (scene.settings.width, scene.settings.height);
-        let (film, targets, paths, earlier_seconds) = match resume {
-            Some(r) => {
-                assert_eq!((r.film.width(), r.film.height()), (width, height), "the snapshot is of another size");
-                assert_eq!(r.targets.len(), width as usize * height as usize, "one target per pixel");
-                (r.film, r.targets, r.paths, r.seconds)
-            }
-            None => {
-                let film = Film::try_new(width, height)?;
-                let targets = vec![0; width as usize * height as usize];
-                (film, targets, PathStats::default(), 0.0)
-            }
-        };
-        Ok(Self {
-            scene,
-            propagator: propagator(scene),
-            tiles: part.tiles(width, height),
-            state: Mutex::new(State { film, targets, paths }),
-            earlier_seconds,
-            started: OnceLock::new(),
-        })
-    }
-
-    /// Renders on the current rayon pool until `goal` is reached or `cancel` is set (answered
-    /// within a sample); `progress` is told `(samples done, samples total)` of this part, the
-    /// total being that of the pass in progress (with a noise target, later passes may add more).
-    pub fn run(&self, goal: Goal, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> RenderStats {
-        let start = *self.started.get_or_init(Instant::now);
-        let settings = &self.scene.settings;
-        let integrator = PathIntegrator::new(&self.scene.world, &self.propagator, settings);
-        let outcome = loop {
-            if !self.pass(&integrator, goal, cancel, progress) {
-                break Outcome::Interrupted;
-            }
-            let next = {
-                let mut state = self.lock();
-                let State { film, targets, .. } = &mut *state;
-                adaptive::next_targets(film, targets, &self.tiles, goal)
-            };
-            if let Some(outcome) = next {
-                break outcome;
-            }
-        };
-        self.stats(&self.lock(), outcome, start.elapsed())
-    }
-
-    /// A copy of the film and the pass targets as they stand, every pixel with exactly the
-    /// samples its sums hold, and the statistics so far. Safe to call from another thread while
-    /// [`Renderer::run`] works.
-    pub fn snapshot(&self) -> (Film, Vec<u32>, RenderStats) {
-        let state = self.lock();
-        let elapsed = self.started.get().map_or(Duration::ZERO, Instant::elapsed);
-        (state.film.clone(), state.targets.clone(), self.stats(&state, Outcome::Interrupted, elapsed))
-    }
-
-    /// The film, the pass targets and the path counts.
-    pub fn into_state(self) -> (Film, Vec<u32>, PathStats) {
-        let state = self.state.into_inner().unwrap_or_else(|e| e.into_inner());
-        (state.film, state.targets, state.paths)
-    }
-
-    fn lock(&self) -> std::sync::MutexGuard<'_, State> {
-        self.state.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// Takes every pixel of the part to its target, in rounds that each take at most `chunk`
-    /// more samples of a pixel (doubling while rounds are shorter than [`ROUND`]). False if
-    /// cancelled.
-    fn pass(
-        &self,
-        integrator: &PathIntegrator<'_>,
-        goal: Goal,
-        cancel: &AtomicBool,
-        progress: &(dyn Fn(u64, u64) + Sync),
-    ) -> bool {
-        let (taken, total) = self.taken_and_target(goal.spp);
-        let done = AtomicU64::new(taken);
-        let mut chunk = 1u32;
-        loop {
-            let round = Instant::now();
-            let more = AtomicBool::new(false);
-            self.tiles.par_iter().for_each(|&bounds| {
-                if !cancel.load(Ordering::Relaxed) {
-                    let samples = self.render_tile(integrator, bounds, (chunk, goal.spp), cancel, &more);
-                    progress(done.fetch_add(samples, Ordering::Relaxed) + samples, total);
+/// A render of `part` of `scene` to `goal` by the scene's light transport, from scratch or
+/// continuing `resume` (whose image must have the scene's size).
+///
+/// Fails when the film cannot be allocated, and for photon mapping in a spacetime it cannot
+/// trace forwards, of a part, or to a noise target.
+///
+/// # Panics
+/// If `resume` does not fit the scene: of another size, or another transport's (read it with
+/// [`Checkpointed::read`] for the scene's transport).
+pub fn progressive<'s>(
+    scene: &'s Scene,
+    part: Part,
+    goal: Goal,
+    resume: Option<Resume>,
+) -> Result<Box<dyn Progressive + 's>, StartError> {
+    match scene.settings.integrator {
+        IntegratorKind::Path | IntegratorKind::BruteForce => {
+            let resume = resume.map(|r| match r.state {
+                Checkpointed::Passes { film, targets } => {
+                    PathResume { film, targets, paths: r.paths, seconds: r.seconds }
+                }
+                Checkpointed::Iterations(_) => {
+                    panic!("a photon-mapping checkpoint cannot continue a path tracer's render")
                 }
             });
-            if cancel.load(Ordering::Relaxed) {
-                return false;
-            }
-            if !more.load(Ordering::Relaxed) {
-                return true;
-            }
-            if round.elapsed() < ROUND {
-                chunk = chunk.saturating_mul(2);
-            }
+            let render = PathRender::new(scene, part, goal, resume).map_err(StartError::FilmTooLarge)?;
+            Ok(Box::new(render))
         }
-    }
-
-    /// The samples the part's pixels have taken, and the samples they will have after this
-    /// pass (to their targets, at most `spp`).
-    fn taken_and_target(&self, spp: u32) -> (u64, u64) {
-        let state = self.lock();
-        let width = state.film.width() as usize;
-        self.tiles.iter().flat_map(|t| t.pixels()).fold((0, 0), |(taken, total), (x, y)| {
-            let done = u64::from(state.film.taken_at(x, y));
-            let target = state.targets[y as usize * width + x as usize].min(spp);
-            (taken + done, total + done.max(u64::from(target)))
-        })
-    }
-
-    /// Takes each pixel of one tile at most `chunk` samples closer to its target (at most `spp`:
-    /// a resumed render may aim lower than the pass it continues); sets `more` if some pixel is
-    /// still short of it. Returns the samples taken.
-    fn render_tile(
-        &self,
-        integrator: &PathIntegrator<'_>,
-        bounds: TileBounds,
-        (chunk, spp): (u32, u32),
-        cancel: &AtomicBool,
-        more: &AtomicBool,
-    ) -> u64 {
-        let scene = self.scene;
-        let settings = &scene.settings;
-        let (mut tile, targets) = {
-            let state = self.lock();
-            let width = settings.width as usize;
-            let targets: Vec<u32> =
-                bounds.pixels().map(|(x, y)| state.targets[y as usize * width + x as usize]).collect();
-            (state.film.tile(bounds), targets)
-        };
-        let mut stats = PathStats::default();
-        let mut samples = 0;
-        'pixels: for ((x, y), target) in bounds.pixels().zip(targets) {
-            let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
-            let first = tile.taken_at(x, y);
-            let target = target.min(spp);
-            let end = target.min(first.saturating_add(chunk));
-            for s in first..end {
-                if cancel.load(Ordering::Relaxed) {
-                    break 'pixels;
-                }
-                let mut sampler = Sampler::for_sample(settings.seed, pixel, u64::from(s));
-                let fs = settings.filter.sample(sampler.next_2d());
-                let size = [settings.width, settings.height];
-                let l = match scene.camera.ray([x, y], fs.offset, size, sampler.next_2d()) {
-                    Some(ray) => {
-                        let start = (scene.camera.region, ray.origin, ray.direction);
-                        integrator.radiance(start, ray.doppler, &mut sampler, &mut stats)
-                    }
-                    // Where the camera sees nothing (outside a fisheye's circle) the film is black.
-                    None => Rgb::ZERO,
-                };
-                tile.add_sample(x, y, l, fs.weight);
-                samples += 1;
+        IntegratorKind::Photon => {
+            if part != Part::WHOLE || goal.noise.is_some() {
+                return Err(StartError::WholeIterationsOnly);
             }
-            if end < target {
-                more.store(true, Ordering::Relaxed);
+            if !photon::supports(&scene.spacetime) {
+                return Err(StartError::Backwards { spacetime: scene.spacetime.name() });
             }
-        }
-        let mut state = self.lock();
-        state.film.store_tile(tile);
-        state.paths += stats;
-        samples
-    }
-
-    fn stats(&self, state: &State, outcome: Outcome, elapsed: Duration) -> RenderStats {
-        let film = &state.film;
-        let pixels = || self.tiles.iter().flat_map(|t| t.pixels());
-        let (spp_min, spp_max) =
-            pixels().map(|(x, y)| film.taken_at(x, y)).fold((u32::MAX, 0), |(lo, hi), n| (lo.min(n), hi.max(n)));
-        RenderStats {
-            paths: state.paths,
-            samples: pixels().map(|(x, y)| u64::from(film.taken_at(x, y))).sum(),
-            nan_samples: film.nan_samples(),
-            seconds: self.earlier_seconds + elapsed.as_secs_f64(),
-            outcome,
-            spp_min: spp_min.min(spp_max),
-            spp_max,
-            relative_error: noise::estimated_relative_error(film, pixels()),
+            let resume = resume.map(|r| match r.state {
+                Checkpointed::Iterations(state) => SppmResume { state, paths: r.paths, seconds: r.seconds },
+                Checkpointed::Passes { .. } => panic!("a path tracer's checkpoint cannot continue photon mapping"),
+            });
+            Ok(Box::new(SppmRender::new(scene, goal.spp, resume)))
         }
     }
 }

@@ -9,7 +9,7 @@ use render::emission::{BlackbodyLight, Profile, Radiance};
 use render::film::Film;
 use render::geometry::Vec3;
 use render::material::Material;
-use render::renderer::{render, RenderStats};
+use render::renderer::{progressive, render, Checkpointed, Goal, Part, RenderStats, Resume, StartError, Unit};
 use render::scene::Scene;
 use render::settings::{IntegratorKind, PhotonSettings, RenderSettings};
 use render::shape::Shape;
@@ -415,6 +415,48 @@ fn an_interrupted_render_keeps_its_finished_iterations() {
     });
     assert_eq!((stats.spp_max, stats.outcome, stats.samples), (2, render::renderer::Outcome::Interrupted, 128));
     assert!((0..8).all(|x| film.samples_at(x, 3) == 1) && mean(&film) > 0.0);
+}
+
+#[test]
+fn a_render_continued_from_its_checkpoint_is_the_uninterrupted_render_bit_for_bit() {
+    for (integrator, unit) in
+        [(IntegratorKind::Photon, Unit::Iterations), (IntegratorKind::Path, Unit::SamplesPerPixel)]
+    {
+        let mut scene = lit_box();
+        (scene.settings.width, scene.settings.height, scene.settings.integrator) = (8, 8, integrator);
+        let cancel = AtomicBool::new(false);
+        let whole = progressive(&scene, Part::WHOLE, Goal::spp(4), None).unwrap();
+        assert_eq!(whole.unit(), unit);
+        whole.run(&cancel, &|_, _| {});
+        let whole = whole.into_film();
+
+        let first = progressive(&scene, Part::WHOLE, Goal::spp(2), None).unwrap();
+        let stats = first.run(&cancel, &|_, _| {});
+        let path = std::env::temp_dir().join(format!("nullpath-resume-{integrator:?}-{}.exr", std::process::id()));
+        first.write_checkpoint(&path, &|_| Default::default()).unwrap();
+        let (state, _) = Checkpointed::read(&path, integrator).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        assert_eq!((state.size(), state.reached()), ((8, 8), 2));
+        let resume = Resume { state, paths: stats.paths, seconds: stats.seconds };
+        let continued = progressive(&scene, Part::WHOLE, Goal::spp(4), Some(resume)).unwrap();
+        let stats = continued.run(&cancel, &|_, _| {});
+        assert_eq!((stats.spp_min, stats.spp_max, stats.outcome), (4, 4, render::renderer::Outcome::Finished));
+        let continued = continued.into_film();
+        for (x, y) in whole.bounds().pixels() {
+            let (p, q) = (whole.pixel_f64(x, y), continued.pixel_f64(x, y));
+            assert!(p.iter().zip(q).all(|(a, b)| a.to_bits() == b.to_bits()), "{integrator:?}: ({x}, {y}) differs");
+        }
+    }
+}
+
+#[test]
+fn photon_mapping_renders_the_whole_image_to_a_number_of_iterations() {
+    let scene = lit_box();
+    let goal = Goal { spp: 4, noise: Some(render::renderer::NoiseTarget { relative_error: 0.1, adaptive: false }) };
+    let refused = |part, goal| matches!(progressive(&scene, part, goal, None), Err(StartError::WholeIterationsOnly));
+    assert!(refused(Part::new(1, 2).unwrap(), Goal::spp(4)));
+    assert!(refused(Part::WHOLE, goal));
+    assert!(!refused(Part::WHOLE, Goal::spp(4)));
 }
 
 /// The first three channels' means over the image.

@@ -13,10 +13,8 @@
 use super::state::{Shared, Stage};
 use image::ImageEncoder;
 use render::film::{to_rgb8, Film};
-use render::integrator::photon::{self, PhotonRenderer};
-use render::renderer::{Goal, Part, RenderStats, Renderer};
+use render::renderer::{progressive, Goal, Part};
 use render::scene::Scene;
-use render::settings::IntegratorKind;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
@@ -94,51 +92,6 @@ pub fn encode_png(film: &Film, scene: &Scene) -> Result<Vec<u8>, String> {
     Ok(png)
 }
 
-/// A progressive render by the scene's integrator, as `nullpath render` makes it.
-enum Progressive<'s> {
-    Path(Renderer<'s>),
-    Photon(PhotonRenderer<'s>),
-}
-
-impl<'s> Progressive<'s> {
-    fn new(scene: &'s Scene) -> Result<Self, String> {
-        if scene.settings.integrator != IntegratorKind::Photon {
-            return Renderer::new(scene, Part::WHOLE, None).map(Progressive::Path).map_err(|e| e.to_string());
-        }
-        // Scene files are checked for it when loaded, and the sliders keep the spacetime's type.
-        if !photon::supports(&scene.spacetime) {
-            return Err(format!(
-                "photon mapping cannot trace light forwards in the {} spacetime",
-                scene.spacetime.name()
-            ));
-        }
-        Ok(Progressive::Photon(PhotonRenderer::new(scene, None)))
-    }
-
-    /// Renders to `spp` samples per pixel (the scene's) unless `cancel` is set; `progress` is
-    /// called as samples (tiles of them) or iterations are done.
-    fn run(&self, spp: u32, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) {
-        match self {
-            Progressive::Path(r) => r.run(Goal::spp(spp), cancel, progress),
-            Progressive::Photon(r) => r.run(cancel, progress),
-        };
-    }
-
-    /// The image so far and its statistics.
-    fn snapshot(&self) -> (Film, RenderStats) {
-        match self {
-            Progressive::Path(r) => {
-                let (film, _, stats) = r.snapshot();
-                (film, stats)
-            }
-            Progressive::Photon(r) => {
-                let (state, stats) = r.snapshot();
-                (r.film(&state), stats)
-            }
-        }
-    }
-}
-
 /// Renders `scene` progressively to its samples per pixel, publishing frames once every pixel
 /// has a sample; false if a newer generation cancelled it (or it could not start).
 ///
@@ -148,7 +101,9 @@ impl<'s> Progressive<'s> {
 /// beside the render's — never costs the render more than a small share of the machine.
 /// (Taking one every 250 ms whatever happened cost the Kerr room a fifth of its two cores.)
 fn render_stage(shared: &Shared, generation: u64, scene: &Scene, last: bool) -> bool {
-    let renderer = match Progressive::new(scene) {
+    // Scene files are checked for a spacetime photon mapping can trace, and the sliders keep
+    // the spacetime's type; the refusal is for the spacetimes that slip through all the same.
+    let renderer = match progressive(scene, Part::WHOLE, Goal::spp(scene.settings.spp), None) {
         Ok(r) => r,
         Err(e) => {
             eprintln!("nullpath preview: {e}");
@@ -161,7 +116,7 @@ fn render_stage(shared: &Shared, generation: u64, scene: &Scene, last: bool) -> 
     let (finished_tx, finished) = mpsc::channel();
     std::thread::scope(|s| {
         s.spawn(|| {
-            renderer.run(scene.settings.spp, &cancel, &|_, _| {
+            renderer.run(&cancel, &|_, _| {
                 progress.fetch_add(1, Ordering::Relaxed);
             });
             // The receiver lives until this scope ends.
@@ -202,6 +157,7 @@ fn render_stage(shared: &Shared, generation: u64, scene: &Scene, last: bool) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use render::settings::IntegratorKind;
 
     #[test]
     fn the_first_frame_is_small_and_the_preview_keeps_the_aspect_and_the_integrator() {

@@ -42,9 +42,7 @@ mod visible;
 
 use super::stats::PathStats;
 use crate::color::Rgb;
-use crate::film::{Film, ImageWriteError, Metadata};
 use crate::propagator::Propagator;
-use crate::renderer::{Outcome, RenderStats};
 use crate::sampling::{Rng, Sampler};
 use crate::scene::Scene;
 use crate::world::World;
@@ -55,10 +53,8 @@ use rayon::prelude::*;
 use spacetime::metric::Forwards;
 use spacetime::{Region, Spacetime};
 pub use state::SppmState;
-use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Mutex, MutexGuard, OnceLock};
-use std::time::{Duration, Instant};
+use std::sync::Mutex;
 use trace::{Deposit, PhotonPass};
 use visible::{CameraPass, CameraSample, VisiblePoint};
 
@@ -78,128 +74,15 @@ pub fn supports(spacetime: &Spacetime) -> bool {
 }
 
 /// Photons an iteration of `scene`'s render: as set, or one per pixel.
-fn photons_per_iteration(scene: &Scene) -> u64 {
+pub fn photons_per_iteration(scene: &Scene) -> u64 {
     let settings = &scene.settings;
     settings.photon.per_iteration.unwrap_or(u64::from(settings.width) * u64::from(settings.height))
 }
 
-/// Where a continued render starts: the state of a checkpoint, what it counted, and how long
-/// it had run.
-pub struct SppmResume {
-    pub state: SppmState,
-    pub paths: PathStats,
-    pub seconds: f64,
-}
-
-/// An SPPM render of a scene to `scene.settings.spp` iterations, from scratch or continuing a
-/// checkpoint; its state can be taken from another thread between iterations.
-pub struct PhotonRenderer<'s> {
-    scene: &'s Scene,
-    propagator: Propagator,
-    state: Mutex<(SppmState, PathStats)>,
-    /// Seconds of earlier runs that this one continues.
-    earlier_seconds: f64,
-    started: OnceLock<Instant>,
-}
-
-impl<'s> PhotonRenderer<'s> {
-    /// # Panics
-    /// If the spacetime is not [supported](supports) (scene files are checked for it when
-    /// loaded), or `resume` is of another size than the scene.
-    pub fn new(scene: &'s Scene, resume: Option<SppmResume>) -> Self {
-        assert!(
-            supports(&scene.spacetime),
-            "photon mapping needs a spacetime whose light can be followed forwards, not {:?}",
-            scene.spacetime
-        );
-        let (width, height) = (scene.settings.width, scene.settings.height);
-        let (state, paths, earlier_seconds) = match resume {
-            Some(r) => {
-                assert_eq!((r.state.width(), r.state.height()), (width, height), "the checkpoint is of another size");
-                (r.state, r.paths, r.seconds)
-            }
-            None => (SppmState::new(width, height), PathStats::default(), 0.0),
-        };
-        Self {
-            scene,
-            propagator: crate::renderer::propagator(scene),
-            state: Mutex::new((state, paths)),
-            earlier_seconds,
-            started: OnceLock::new(),
-        }
-    }
-
-    /// Runs iterations until the scene's count is reached or `cancel` is set (an unfinished
-    /// iteration is dropped); `progress` is told `(iterations done, iterations total)`.
-    pub fn run(&self, cancel: &AtomicBool, progress: &(dyn Fn(u64, u64) + Sync)) -> RenderStats {
-        let start = *self.started.get_or_init(Instant::now);
-        let settings = &self.scene.settings;
-        let start_radius = |region| settings.photon.radius.unwrap_or_else(|| default_radius(&self.scene.world, region));
-        let sources = Sources::new(&self.scene.world, &self.scene.spacetime, &self.propagator);
-        let sppm = Sppm {
-            scene: self.scene,
-            camera: CameraPass {
-                world: &self.scene.world,
-                propagator: &self.propagator,
-                max_depth: settings.max_depth,
-                background: Background::new(&self.scene.world, |region| sources.carry_sky(region)),
-            },
-            photons: photons_per_iteration(self.scene),
-            sources,
-            start_radius: [start_radius(Region::Upper), start_radius(Region::Lower)],
-        };
-        loop {
-            let done = self.lock().0.iterations;
-            if done >= settings.spp
-                || cancel.load(Ordering::Relaxed)
-                || sppm.iteration(&self.state, done, cancel).is_none()
-            {
-                break;
-            }
-            progress(u64::from(done) + 1, u64::from(settings.spp));
-        }
-        self.stats(&self.lock(), start.elapsed())
-    }
-
-    /// A copy of the state after the last finished iteration, and the statistics so far.
-    pub fn snapshot(&self) -> (SppmState, RenderStats) {
-        let state = self.lock();
-        let elapsed = self.started.get().map_or(Duration::ZERO, Instant::elapsed);
-        (state.0.clone(), self.stats(&state, elapsed))
-    }
-
-    /// The image of `state` (see [`SppmState::film`]).
-    pub fn film(&self, state: &SppmState) -> Film {
-        state.film(photons_per_iteration(self.scene))
-    }
-
-    /// Writes `state` as a checkpoint with `metadata` (see [`SppmState::write`]).
-    pub fn write_checkpoint(&self, path: &Path, state: &SppmState, metadata: &Metadata) -> Result<(), ImageWriteError> {
-        state.write(path, photons_per_iteration(self.scene), metadata)
-    }
-
-    fn lock(&self) -> MutexGuard<'_, (SppmState, PathStats)> {
-        self.state.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    fn stats(&self, (state, paths): &(SppmState, PathStats), elapsed: Duration) -> RenderStats {
-        let done = state.iterations;
-        let film = self.film(state);
-        RenderStats {
-            paths: *paths,
-            samples: u64::from(done) * state.pixels.len() as u64,
-            nan_samples: film.nan_samples() + state.dropped,
-            seconds: self.earlier_seconds + elapsed.as_secs_f64(),
-            outcome: if done >= self.scene.settings.spp { Outcome::Finished } else { Outcome::Interrupted },
-            spp_min: done,
-            spp_max: done,
-            relative_error: None,
-        }
-    }
-}
-
-/// One render's fixed parts.
-struct Sppm<'a> {
+/// One render's fixed parts: what every iteration traces from and with. The iterations
+/// themselves are driven by the renderer module, which keeps the [`SppmState`] between them,
+/// counts them, checkpoints and continues them.
+pub struct Sppm<'a> {
     scene: &'a Scene,
     camera: CameraPass<'a>,
     photons: u64,
@@ -209,9 +92,43 @@ struct Sppm<'a> {
     start_radius: [f64; 2],
 }
 
-impl Sppm<'_> {
+impl<'a> Sppm<'a> {
+    /// The fixed parts of `scene`'s render, tracing with `propagator` (the scene's, as the
+    /// renderer's `propagator` makes it).
+    ///
+    /// # Panics
+    /// If the spacetime is not [supported](supports) (scene files are checked for it when
+    /// loaded; the renderer refuses it before it gets here).
+    pub fn new(scene: &'a Scene, propagator: &'a Propagator) -> Self {
+        assert!(
+            supports(&scene.spacetime),
+            "photon mapping needs a spacetime whose light can be followed forwards, not {:?}",
+            scene.spacetime
+        );
+        let settings = &scene.settings;
+        let start_radius = |region| settings.photon.radius.unwrap_or_else(|| default_radius(&scene.world, region));
+        let sources = Sources::new(&scene.world, &scene.spacetime, propagator);
+        Sppm {
+            scene,
+            camera: CameraPass {
+                world: &scene.world,
+                propagator,
+                max_depth: settings.max_depth,
+                background: Background::new(&scene.world, |region| sources.carry_sky(region)),
+            },
+            photons: photons_per_iteration(scene),
+            sources,
+            start_radius: [start_radius(Region::Upper), start_radius(Region::Lower)],
+        }
+    }
+
     /// Runs iteration `iteration` into `state`; `None` (and `state` untouched) if cancelled.
-    fn iteration(&self, state: &Mutex<(SppmState, PathStats)>, iteration: u32, cancel: &AtomicBool) -> Option<()> {
+    ///
+    /// `state` is locked twice, briefly: to read the pixels' radii before the passes, and to add
+    /// the iteration after them, so that a snapshot taken meanwhile from another thread sees the
+    /// state after the last finished iteration. Only the iteration's driver may change `state`
+    /// between the two (the radii read are those the iteration gathers with).
+    pub fn iteration(&self, state: &Mutex<(SppmState, PathStats)>, iteration: u32, cancel: &AtomicBool) -> Option<()> {
         let lock = || state.lock().unwrap_or_else(|e| e.into_inner());
         let (samples, camera_stats) = camera_pass(self.scene, &self.camera, iteration);
         let visible: Vec<Option<VisiblePoint>> = samples.iter().map(|(s, _)| s.visible).collect();
