@@ -9,7 +9,7 @@ use render::propagator::RayEnd;
 use render::scene::Scene;
 use render::settings::RenderSettings;
 use spacetime::geodesic::plane::{trace_plane, PlaneStart};
-use spacetime::{Integrator, Region, Schwarzschild, Spacetime, TraceSettings, Visit};
+use spacetime::{Region, Schwarzschild, Spacetime, Stepping, TraceSettings, Visit};
 use std::collections::BTreeMap;
 
 /// The reference tolerance.
@@ -112,7 +112,7 @@ fn path(hole: &Schwarzschild, settings: &TraceSettings, room: Aabb, (from, dir):
 fn path_deviation(scene: &Scene, rays: &[Start], rtol: f64) -> f64 {
     let Spacetime::Schwarzschild(hole) = scene.spacetime else { panic!("the room has a Schwarzschild hole") };
     let settings = |rtol| TraceSettings {
-        integrator: Integrator::Adaptive { rtol },
+        stepping: Stepping::Adaptive { rtol },
         escape_radius: 100.0,
         max_step_fraction: 0.5,
         max_steps: 1_000_000,

@@ -4,10 +4,10 @@ use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::{Arg, ArgMatches, FromArgMatches, Parser, ValueEnum};
 use spacetime::metric::{MetricDescriptor, ParameterDescriptor, SPACETIMES};
 use spacetime::scattering::{scatter, Scattering};
-use spacetime::{Fate, Integrator, Spacetime};
+use spacetime::{Fate, Spacetime, Stepping};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum IntegratorKind {
+pub enum SteppingKind {
     Rk4,
     Adaptive,
 }
@@ -29,8 +29,8 @@ pub struct Args {
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     inclination: f64,
     /// Integrator.
-    #[arg(long, value_enum, default_value_t = IntegratorKind::Adaptive)]
-    integrator: IntegratorKind,
+    #[arg(long, value_enum, default_value_t = SteppingKind::Adaptive)]
+    integrator: SteppingKind,
     /// Relative tolerance of the adaptive integrator.
     #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     rtol: f64,
@@ -160,10 +160,10 @@ pub fn run(args: &Args) -> Result<(), String> {
     check("impact", args.impact, true, "must be a finite number")?;
     check("inclination", args.inclination, args.inclination.abs() <= 180.0, "must be in [−180, 180] degrees")?;
     let integrator = match args.integrator {
-        IntegratorKind::Adaptive => Integrator::Adaptive {
+        SteppingKind::Adaptive => Stepping::Adaptive {
             rtol: check("rtol", args.rtol, args.rtol > 0.0 && args.rtol < 1.0, "must be in (0, 1)")?,
         },
-        IntegratorKind::Rk4 => Integrator::Rk4 { step: check("step", args.step, args.step > 0.0, "must be > 0")? },
+        SteppingKind::Rk4 => Stepping::Rk4 { step: check("step", args.step, args.step > 0.0, "must be > 0")? },
     };
     let s = scatter(&spacetime, args.impact, args.inclination.to_radians(), integrator);
     if args.json {

@@ -3,13 +3,13 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use spacetime::fan::{trace_hamiltonian, trace_in_plane, Fan};
-use spacetime::{Integrator, Schwarzschild, TraceSettings};
+use spacetime::{Schwarzschild, Stepping, TraceSettings};
 use std::hint::black_box;
 
 fn fan_row(c: &mut Criterion) {
     let hole = Schwarzschild::new(1.0);
     let fan = Fan::standard(1.0);
-    let settings = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-8 }, ..TraceSettings::default() };
+    let settings = TraceSettings { stepping: Stepping::Adaptive { rtol: 1e-8 }, ..TraceSettings::default() };
     // The middle row crosses the shadow, the photon ring and the weakly bent sky.
     let row: Vec<u64> = (0..u64::from(fan.size)).map(|i| u64::from(fan.size) * u64::from(fan.size / 2) + i).collect();
     let mut group = c.benchmark_group("fan_row_512");

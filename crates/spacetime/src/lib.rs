@@ -19,7 +19,7 @@ pub mod observer;
 pub mod scattering;
 pub mod tensor;
 
-pub use geodesic::{Fate, Integrator, State, Trace, TraceSettings, Visit};
+pub use geodesic::{Fate, State, Stepping, Trace, TraceSettings, Visit};
 pub use metric::{
     Dneg, Ellis, Kerr, KerrNewman, Metric, MetricFunction, Minkowski, MorrisThorne, Region, ReissnerNordstrom,
     Schwarzschild, Spacetime, UserMetric, Wormhole,

@@ -7,7 +7,7 @@
 //! physically (in the opposite sense) orbits with the hole.
 
 use crate::geodesic::plane::{trace_plane, PlaneMetric, PlaneRay, PlaneStart};
-use crate::geodesic::{HamiltonianTracer, Integrator, State, TraceSettings, Visit};
+use crate::geodesic::{HamiltonianTracer, State, Stepping, TraceSettings, Visit};
 use crate::metric::{Metric, OwnStepper, Spacetime, Tracers};
 use crate::tensor::{cross3, dot3, norm3, spatial};
 use crate::Fate;
@@ -26,27 +26,21 @@ pub struct Scattering {
 }
 
 /// Settings for scattering experiments: far escape radius and tight tolerance.
-pub fn settings(integrator: Integrator) -> TraceSettings {
-    TraceSettings {
-        integrator,
-        escape_radius: 1e3,
-        max_step_fraction: 0.5,
-        max_steps: 2_000_000,
-        check_every_step: true,
-    }
+pub fn settings(stepping: Stepping) -> TraceSettings {
+    TraceSettings { stepping, escape_radius: 1e3, max_step_fraction: 0.5, max_steps: 2_000_000, check_every_step: true }
 }
 
 /// Scatters a ray of impact parameter `b` (in the equatorial plane tilted by `inclination_rad`
 /// about the incoming direction) off `spacetime`.
-pub fn scatter(spacetime: &Spacetime, b: f64, inclination_rad: f64, integrator: Integrator) -> Scattering {
-    spacetime.choose_tracer(Scatter { b, inclination_rad, integrator })
+pub fn scatter(spacetime: &Spacetime, b: f64, inclination_rad: f64, stepping: Stepping) -> Scattering {
+    spacetime.choose_tracer(Scatter { b, inclination_rad, stepping })
 }
 
 /// A scattering experiment, handed to the tracer the spacetime chooses.
 struct Scatter {
     b: f64,
     inclination_rad: f64,
-    integrator: Integrator,
+    stepping: Stepping,
 }
 
 impl Tracers for Scatter {
@@ -63,11 +57,11 @@ impl Tracers for Scatter {
     }
 
     fn in_plane<M: PlaneMetric>(self, metric: &M) -> Scattering {
-        in_plane(metric, self.b, self.inclination_rad, self.integrator)
+        in_plane(metric, self.b, self.inclination_rad, self.stepping)
     }
 
     fn four_d<M: Metric>(self, metric: &M) -> Scattering {
-        hamiltonian(metric, self.b, self.inclination_rad, self.integrator)
+        hamiltonian(metric, self.b, self.inclination_rad, self.stepping)
     }
 
     /// Scattering is measured with the 4-D tracer whatever the metric's own stepper.
@@ -82,12 +76,12 @@ fn offset(inclination_rad: f64) -> [f64; 3] {
 }
 
 /// Spherically symmetric spacetimes: exact reduction to the ray's plane.
-fn in_plane<M: PlaneMetric>(metric: &M, b: f64, inclination_rad: f64, integrator: Integrator) -> Scattering {
+fn in_plane<M: PlaneMetric>(metric: &M, b: f64, inclination_rad: f64, stepping: Stepping) -> Scattering {
     let scale = metric.length_scale();
     let settings = TraceSettings {
         escape_radius: 1e3 * scale.max(b.abs()),
-        max_step_fraction: plane_step(integrator),
-        ..settings(integrator)
+        max_step_fraction: plane_step(stepping),
+        ..settings(stepping)
     };
     let e = offset(inclination_rad);
     // At infinity the position direction is −x; the ray sweeps towards the offset side.
@@ -107,19 +101,19 @@ fn in_plane<M: PlaneMetric>(metric: &M, b: f64, inclination_rad: f64, integrator
 }
 
 /// The RK4 step in the plane is an azimuth step; the adaptive one is capped at half a radian.
-fn plane_step(integrator: Integrator) -> f64 {
-    match integrator {
-        Integrator::Rk4 { step } => step,
-        Integrator::Adaptive { .. } => 0.5,
+fn plane_step(stepping: Stepping) -> f64 {
+    match stepping {
+        Stepping::Rk4 { step } => step,
+        Stepping::Adaptive { .. } => 0.5,
     }
 }
 
 /// Any metric: 4-D Hamiltonian integration from a large distance, with the bending outside
 /// that distance added from the straight asymptotes (its remainder is O(M b / D²)).
-fn hamiltonian<M: Metric>(metric: &M, b: f64, inclination_rad: f64, integrator: Integrator) -> Scattering {
+fn hamiltonian<M: Metric>(metric: &M, b: f64, inclination_rad: f64, stepping: Stepping) -> Scattering {
     let scale = metric.length_scale();
     let distance = 1e4 * scale.max(b.abs());
-    let settings = TraceSettings { escape_radius: distance, max_step_fraction: 0.1, ..settings(integrator) };
+    let settings = TraceSettings { escape_radius: distance, max_step_fraction: 0.1, ..settings(stepping) };
     let e = offset(inclination_rad);
     let x0 = [0.0, -distance, b * e[1], b * e[2]];
     // Backward-traced photon of energy 1 (p_t = +1) moving along +x: solve H = 0 for p_x.
@@ -128,11 +122,11 @@ fn hamiltonian<M: Metric>(metric: &M, b: f64, inclination_rad: f64, integrator: 
     let px = (-a1 + (a1 * a1 - 4.0 * a2 * a0).sqrt()) / (2.0 * a2);
     let start = State { x: x0, p: [1.0, px, 0.0, 0.0] };
     let mut tracer = HamiltonianTracer::new(metric, start, settings);
-    if let Integrator::Rk4 { .. } = integrator {
+    if let Stepping::Rk4 { .. } = stepping {
         tracer = HamiltonianTracer::new(
             metric,
             start,
-            TraceSettings { integrator: Integrator::Rk4 { step: f64::INFINITY }, ..settings },
+            TraceSettings { stepping: Stepping::Rk4 { step: f64::INFINITY }, ..settings },
         );
     }
     // Orbital-plane normal of the traced curve at the start, to sign the swept azimuth.

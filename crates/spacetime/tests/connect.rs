@@ -6,7 +6,7 @@
 use spacetime::geodesic::plane::{trace_plane, PlaneStart, PlaneStep, Way};
 use spacetime::metric::schwarzschild::connect::{Connection, Connector, Waypoints};
 use spacetime::tensor::{cross3, dot3, norm3, normalize3};
-use spacetime::{Integrator, Region, Schwarzschild, TraceSettings, Visit};
+use spacetime::{Region, Schwarzschild, Stepping, TraceSettings, Visit};
 
 /// Start and end points: near and far, weak and strong bending, sweeps from 0.1 to 3.1 rad.
 const PAIRS: [([f64; 3], [f64; 3]); 6] = [
@@ -61,7 +61,7 @@ fn without_mass_the_connection_is_the_straight_line_with_density_one_over_d_squa
 /// with normal `t` (in the direction of `t`, within `r_y/10` of `y`: a ray going round the hole
 /// may cross the plane elsewhere first), and its static-frame direction there.
 fn crossing(hole: &Schwarzschild, x: [f64; 3], n: [f64; 3], y: [f64; 3], t: [f64; 3]) -> ([f64; 3], [f64; 3]) {
-    let settings = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-12 }, ..TraceSettings::default() };
+    let settings = TraceSettings { stepping: Stepping::Adaptive { rtol: 1e-12 }, ..TraceSettings::default() };
     let start = PlaneStart::from_observer(hole, Region::Upper, x, n).unwrap();
     let mut found = None;
     trace_plane(hole, start, &settings, |step: &PlaneStep| {
@@ -187,7 +187,7 @@ fn test_pairs(seed: u64, n: usize) -> Vec<(Schwarzschild, [f64; 3], [f64; 3])> {
 /// Points of the ray leaving `x` along the static-frame direction `n`, every tenth of a step,
 /// until it has swept `sweep` about the centre.
 fn ray_points(hole: &Schwarzschild, x: [f64; 3], n: [f64; 3], sweep: f64) -> Vec<[f64; 3]> {
-    let settings = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-12 }, ..TraceSettings::default() };
+    let settings = TraceSettings { stepping: Stepping::Adaptive { rtol: 1e-12 }, ..TraceSettings::default() };
     let start = PlaneStart::from_observer(hole, Region::Upper, x, n).unwrap();
     let mut points = Vec::new();
     trace_plane(hole, start, &settings, |step: &PlaneStep| {

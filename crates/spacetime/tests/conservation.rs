@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used)] // Test helpers may panic: a panic is a failed test.
 
 use spacetime::geodesic::plane::{trace_plane, PlaneMetric, PlaneStart};
-use spacetime::geodesic::{angular_momentum_z, HamiltonianTracer, Integrator, State, TraceSettings, Visit};
+use spacetime::geodesic::{angular_momentum_z, HamiltonianTracer, State, Stepping, TraceSettings, Visit};
 use spacetime::metric::Metric;
 use spacetime::{Ellis, Fate, Kerr, Minkowski, ReissnerNordstrom, Schwarzschild, Tetrad};
 
@@ -35,7 +35,7 @@ fn camera_ray(metric: &dyn Metric, pos: [f64; 3], n: [f64; 3]) -> State {
 /// The constraint and constants are checked at `rtol = 1e-11`; they drift in proportion to the
 /// tolerance (about 100× more at the renderer's 1e-8).
 const ADAPTIVE: TraceSettings = TraceSettings {
-    integrator: Integrator::Adaptive { rtol: 1e-11 },
+    stepping: Stepping::Adaptive { rtol: 1e-11 },
     escape_radius: 1e3,
     max_step_fraction: 0.5,
     max_steps: 100_000,
@@ -95,7 +95,7 @@ fn ellis_keeps_the_null_constraint_energy_and_angular_momentum() {
 fn time_reversal_retraces_the_ray() {
     let metrics: [&dyn Metric; 4] =
         [&Schwarzschild::new(1.0), &Kerr::new(1.0, 0.7), &Ellis::new(1.0), &ReissnerNordstrom::new(1.0, 0.9)];
-    let settings = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-11 }, ..ADAPTIVE };
+    let settings = TraceSettings { stepping: Stepping::Adaptive { rtol: 1e-11 }, ..ADAPTIVE };
     for metric in metrics {
         // Passes close to the centre and bends strongly.
         let start = camera_ray(metric, [12.0, 0.0, 1.0], [-0.8, 0.6, 0.0]);
@@ -136,7 +136,7 @@ fn minkowski_rays_are_straight_to_rounding() {
 /// The in-plane tracer and the 4-D tracer send camera rays to the same place.
 fn plane_agrees_with_hamiltonian<M: PlaneMetric>(metric: &M, seed: u64) {
     let mut rng = Lcg(seed);
-    let far = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-10 }, escape_radius: 1e6, ..ADAPTIVE };
+    let far = TraceSettings { stepping: Stepping::Adaptive { rtol: 1e-10 }, escape_radius: 1e6, ..ADAPTIVE };
     let mut escaped = 0;
     for _ in 0..100 {
         let pos = rng.unit().map(|c| c * 15.0);

@@ -1,13 +1,13 @@
-//! The integrators against exact results (physics notes, "Analytic results to test against").
+//! The integrators against exact results (`docs/physics.md`, "Analytic results to test against").
 //! Exact values come from quadrature of the bending integrals (`spacetime::analytic`).
 
 #![allow(clippy::unwrap_used)] // Test helpers may panic: a panic is a failed test.
 
 use spacetime::analytic;
 use spacetime::scattering::scatter;
-use spacetime::{Fate, Integrator, Spacetime};
+use spacetime::{Fate, Spacetime, Stepping};
 
-const ADAPTIVE: Integrator = Integrator::Adaptive { rtol: 1e-10 };
+const ADAPTIVE: Stepping = Stepping::Adaptive { rtol: 1e-10 };
 
 #[test]
 fn schwarzschild_bending_matches_the_exact_integral() {
@@ -191,8 +191,8 @@ fn kerr_with_zero_spin_bends_like_schwarzschild() {
 fn rk4_is_available_and_converges() {
     let hole = Spacetime::schwarzschild(1.0).unwrap();
     let exact = analytic::schwarzschild_deflection(1.0, 10.0);
-    let coarse = scatter(&hole, 10.0, 0.0, Integrator::Rk4 { step: 0.05 });
-    let fine = scatter(&hole, 10.0, 0.0, Integrator::Rk4 { step: 0.025 });
+    let coarse = scatter(&hole, 10.0, 0.0, Stepping::Rk4 { step: 0.05 });
+    let fine = scatter(&hole, 10.0, 0.0, Stepping::Rk4 { step: 0.025 });
     let (ec, ef) = ((coarse.deflection_rad - exact).abs(), (fine.deflection_rad - exact).abs());
     assert!(ef < 1e-5 && ef < ec / 8.0, "RK4 errors {ec:e} → {ef:e}");
 }
@@ -206,7 +206,7 @@ fn dneg_wormholes() -> [spacetime::Dneg; 3] {
 /// Tolerance of the wormhole tests: their errors are proportional to it, and at the shared
 /// 10⁻¹⁰ rays that graze a mouth (`b = 1.001 ρ`), whose bending the orbit amplifies, are off by
 /// up to 4·10⁻⁷ (measured; 5·10⁻⁹ at 10⁻¹²).
-const WORMHOLE: Integrator = Integrator::Adaptive { rtol: 1e-12 };
+const WORMHOLE: Stepping = Stepping::Adaptive { rtol: 1e-12 };
 
 /// The tracer's bending past the *Interstellar* wormhole matches the quadrature of its integral
 /// ([`analytic::wormhole_deflection`]) to 10⁻⁷, from rays that graze the mouth (`b = 1.001 ρ`,

@@ -4,7 +4,7 @@ use clap::{Parser, ValueEnum};
 use rayon::prelude::*;
 use render::renderer::RenderStats;
 use spacetime::fan::{trace_hamiltonian, trace_in_plane, Fan, FanRay};
-use spacetime::{Integrator, Schwarzschild, TraceSettings};
+use spacetime::{Schwarzschild, Stepping, TraceSettings};
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
@@ -419,7 +419,7 @@ fn report_text(name: &str, scene: &render::scene::Scene, rows: &Rows) {
 fn geodesics(args: &Args) -> Result<(), String> {
     let hole = Schwarzschild::new(1.0);
     let fan = Fan { size: args.size.unwrap_or(512), ..Fan::standard(1.0) };
-    let settings = TraceSettings { integrator: Integrator::Adaptive { rtol: 1e-8 }, ..TraceSettings::default() };
+    let settings = TraceSettings { stepping: Stepping::Adaptive { rtol: 1e-8 }, ..TraceSettings::default() };
     let all: Vec<u64> = (0..fan.rays()).collect();
     // The 4-D tracer is measured on every 4th ray of every 4th row, to keep the run short.
     let size = u64::from(fan.size);

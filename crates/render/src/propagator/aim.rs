@@ -7,7 +7,7 @@ use super::Propagator;
 use crate::geometry::Vec3;
 use spacetime::geodesic::aim::{aim, AimSettings};
 use spacetime::geodesic::plane::{plane_aim, PlaneAimSettings, PlaneMetric, Side, Way};
-use spacetime::geodesic::{Integrator, TraceSettings};
+use spacetime::geodesic::{Stepping, TraceSettings};
 use spacetime::metric::{LocalFrame, Metric, OwnStepper, Tracers};
 use spacetime::{Region, Tetrad};
 
@@ -106,7 +106,7 @@ impl Propagator {
         let x = metric.world_to_chart(region, self.to_chart(from).to_array(), 0.0)?;
         let frame = Tetrad::local_observer(metric, &x).ok()?;
         let trace = TraceSettings {
-            integrator: Integrator::Adaptive { rtol: AIM_RTOL },
+            stepping: Stepping::Adaptive { rtol: AIM_RTOL },
             max_step_fraction: AIM_STEP_FRACTION,
             ..self.trace
         };

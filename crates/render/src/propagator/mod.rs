@@ -56,7 +56,7 @@ use crate::shape::SurfaceHit;
 use crate::world::World;
 use leaving::straight;
 use spacetime::geodesic::plane::PlaneMetric;
-use spacetime::geodesic::{Integrator, TraceSettings};
+use spacetime::geodesic::{Stepping, TraceSettings};
 use spacetime::metric::schwarzschild::connect::Connector;
 use spacetime::metric::{Metric, OwnStepper, Tracers};
 use spacetime::{Region, Spacetime, Tetrad};
@@ -142,14 +142,14 @@ impl Propagator {
         let escape_radius = (2.0 * scene_radius).max(100.0 * scale);
         let trace = match intersection {
             Intersection::Chord => TraceSettings {
-                integrator: Integrator::Adaptive { rtol },
+                stepping: Stepping::Adaptive { rtol },
                 escape_radius,
                 max_step_fraction: 0.5,
                 max_steps: 1_000_000,
                 check_every_step: false,
             },
             Intersection::Poster { step, max_iterations } => TraceSettings {
-                integrator: Integrator::Rk4 { step },
+                stepping: Stepping::Rk4 { step },
                 escape_radius,
                 max_step_fraction: f64::INFINITY,
                 max_steps: max_iterations,

@@ -67,13 +67,13 @@ fn step_along<M: Metric + ?Sized>(metric: &M, ray: &[f64; 8], delta: &[f64; 8]) 
 mod tests {
     use super::*;
     use crate::geodesic::hamiltonian::pack;
-    use crate::geodesic::{HamiltonianTracer, Integrator, State, TraceSettings, Visit};
+    use crate::geodesic::{HamiltonianTracer, State, Stepping, TraceSettings, Visit};
     use crate::metric::Kerr;
 
     /// The state after `steps` fixed RK4 steps of flow `F` from `y`.
     fn after<const N: usize, F: Flow<N>>(kerr: &Kerr, y: [f64; N], steps: u32) -> [f64; N] {
         let settings = TraceSettings {
-            integrator: Integrator::Rk4 { step: 0.05 },
+            stepping: Stepping::Rk4 { step: 0.05 },
             escape_radius: 1e3,
             max_step_fraction: f64::INFINITY,
             max_steps: steps,

@@ -8,7 +8,7 @@
 //! Steps are controlled, capped and ended by the ray alone, so a ray traced with its bundle takes
 //! the steps it takes without.
 
-use super::{dopri5, Failure, Fate, Integrator, Interpolant, RayStep, RayTracer, State, Trace, TraceSettings, Visit};
+use super::{dopri5, Failure, Fate, Interpolant, RayStep, RayTracer, State, Stepping, Trace, TraceSettings, Visit};
 use crate::metric::{Metric, Region};
 use crate::tensor::{Covector4, Vector4};
 
@@ -112,12 +112,12 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
     /// The tracer of flow `F` from `y` (its first eight components the ray's start).
     pub fn of_flow(metric: &'m M, y: [f64; N], settings: TraceSettings) -> Self {
         let dy = Self::rhs(metric, &y);
-        let next = match settings.integrator {
-            Integrator::Rk4 { step } => step,
+        let next = match settings.stepping {
+            Stepping::Rk4 { step } => step,
             // The first attempt is the longest step allowed (one step scale where nothing caps
             // it): error control shrinks a rejected attempt by its own estimate at once, where
             // growing from a cautious guess took several steps.
-            Integrator::Adaptive { .. } => settings.max_step_fraction.min(1.0),
+            Stepping::Adaptive { .. } => settings.max_step_fraction.min(1.0),
         };
         let flow = std::marker::PhantomData;
         Self { metric, settings, y, dy, next, lambda: 0.0, steps: 0, flow }
@@ -177,15 +177,15 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
         // so rays stride far from masses and creep near them.
         let scale = self.step_scale();
         let cap = (self.settings.max_step_fraction * scale).min(h_limit);
-        let mut h = match self.settings.integrator {
-            Integrator::Rk4 { .. } => self.next,
-            Integrator::Adaptive { .. } => self.next * scale,
+        let mut h = match self.settings.stepping {
+            Stepping::Rk4 { .. } => self.next,
+            Stepping::Adaptive { .. } => self.next * scale,
         }
         .min(cap);
         let mut rejected = false;
         let interpolant = loop {
-            let (step, error) = Interpolant::step(self.settings.integrator, &f, self.lambda, &self.y, &self.dy, h);
-            let (Some(error), Integrator::Adaptive { rtol }) = (error, self.settings.integrator) else {
+            let (step, error) = Interpolant::step(self.settings.stepping, &f, self.lambda, &self.y, &self.dy, h);
+            let (Some(error), Stepping::Adaptive { rtol }) = (error, self.settings.stepping) else {
                 break step;
             };
             let err = self.error_norm(&self.y, &step.y1(), &error, rtol);

@@ -1,7 +1,7 @@
 //! One step of either integrator, with the dense output the renderer needs to place a hit
 //! anywhere inside the step.
 
-use super::{dopri5, rk4, Integrator};
+use super::{dopri5, rk4, Stepping};
 
 /// An accepted or attempted step `y0 → y1` of size `h`, with the state anywhere inside it.
 #[derive(Clone, Copy, Debug)]
@@ -17,19 +17,19 @@ impl<const N: usize> Interpolant<N> {
     /// step and, for the adaptive integrator, its local error estimate.
     #[inline]
     pub fn step(
-        integrator: Integrator,
+        stepping: Stepping,
         f: &impl Fn(f64, &[f64; N]) -> [f64; N],
         t0: f64,
         y0: &[f64; N],
         d0: &[f64; N],
         h: f64,
     ) -> (Self, Option<[f64; N]>) {
-        match integrator {
-            Integrator::Adaptive { .. } => {
+        match stepping {
+            Stepping::Adaptive { .. } => {
                 let a = dopri5::attempt(f, t0, y0, d0, h);
                 (Interpolant::Dopri(a), Some(a.error))
             }
-            Integrator::Rk4 { .. } => {
+            Stepping::Rk4 { .. } => {
                 let y1 = rk4::step(f, t0, y0, d0, h);
                 let d1 = f(t0 + h, &y1);
                 (Interpolant::Hermite { y0: *y0, d0: *d0, y1, d1, h }, None)

@@ -58,7 +58,7 @@ pub struct State {
 
 /// How rays are integrated.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Integrator {
+pub enum Stepping {
     /// Classical RK4 with a fixed affine step `step` (further limited by the step cap).
     Rk4 { step: f64 },
     /// Adaptive steps at relative tolerance `rtol`: Dormand–Prince 5(4) with error control, or
@@ -70,7 +70,7 @@ pub enum Integrator {
 /// Settings shared by every tracer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceSettings {
-    pub integrator: Integrator,
+    pub stepping: Stepping,
     /// A ray further than this from the centre (areal radius) and moving away has escaped.
     pub escape_radius: f64,
     /// Largest coordinate displacement of one step as a fraction of the distance to the centre.
@@ -86,7 +86,7 @@ pub struct TraceSettings {
 impl Default for TraceSettings {
     fn default() -> Self {
         Self {
-            integrator: Integrator::Adaptive { rtol: 1e-8 },
+            stepping: Stepping::Adaptive { rtol: 1e-8 },
             escape_radius: 1e3,
             max_step_fraction: 0.5,
             max_steps: 100_000,

@@ -1,6 +1,7 @@
 //! Spacetime metrics in Hamiltonian form.
 //!
-//! A geodesic needs only the inverse metric and its first derivatives (physics notes):
+//! A geodesic needs only the inverse metric and its first derivatives (`docs/physics.md`,
+//! "Hamiltonian form of null geodesics"):
 //! `H = ½ g^{μν} p_μ p_ν`, `dx^μ/dλ = g^{μν} p_ν`, `dp_μ/dλ = −½ ∂_μ g^{αβ} p_α p_β`.
 //! Each built-in metric lives in its own file, in a chart with no coordinate poles; black holes use
 //! outgoing Kerr–Schild coordinates, regular on the horizon that backward-traced rays cross.

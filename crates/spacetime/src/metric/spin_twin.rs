@@ -228,10 +228,8 @@ mod tests {
         let n = n.map(|c| c / norm);
         // p = E(e₀ + n e): future-directed, leaving along n.
         let p = frame.backward_momentum(&hole.metric(&x), n.map(|c| -c), 1.0).map(|c| -c);
-        let settings = TraceSettings {
-            integrator: crate::geodesic::Integrator::Adaptive { rtol: 1e-10 },
-            ..TraceSettings::default()
-        };
+        let settings =
+            TraceSettings { stepping: crate::geodesic::Stepping::Adaptive { rtol: 1e-10 }, ..TraceSettings::default() };
         let mut forward = HamiltonianTracer::new(&hole, State { x, p }, settings);
         let (y, q) = twin.to_twin(&x, &p);
         let twin_metric = twin.twin();

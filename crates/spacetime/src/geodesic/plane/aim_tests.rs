@@ -3,7 +3,7 @@
 
 use super::{plane_aim, PlaneAim, PlaneAimSettings, PlaneMetric, Side, Way};
 use crate::geodesic::aim::{aim, AimSettings};
-use crate::geodesic::{Integrator, TraceSettings};
+use crate::geodesic::{Stepping, TraceSettings};
 use crate::metric::{Ellis, Region, ReissnerNordstrom, Schwarzschild};
 use crate::observer::Tetrad;
 use crate::tensor::{dot3, norm3, normalize3};
@@ -40,7 +40,7 @@ fn start_tangent<M: PlaneMetric>(metric: &M, x: [f64; 3], found: &PlaneAim) -> [
 /// chart): start and end tangents to 1e-6, density to 1e-5.
 fn agrees_with_the_four_d_aim<M: PlaneMetric>(metric: &M) {
     let trace = TraceSettings {
-        integrator: Integrator::Adaptive { rtol: 1e-10 },
+        stepping: Stepping::Adaptive { rtol: 1e-10 },
         escape_radius: 100.0,
         max_step_fraction: 0.5,
         max_steps: 100_000,
@@ -157,7 +157,7 @@ fn aims_through_the_throat<M: PlaneMetric>(metric: &M) {
     use crate::geodesic::plane::{trace_plane, PlaneStart};
     use crate::geodesic::Visit;
     let trace = TraceSettings {
-        integrator: Integrator::Adaptive { rtol: 1e-11 },
+        stepping: Stepping::Adaptive { rtol: 1e-11 },
         escape_radius: 1e3,
         max_step_fraction: 1.0,
         max_steps: 100_000,

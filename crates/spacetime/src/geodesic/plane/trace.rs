@@ -3,7 +3,7 @@
 
 use super::step::{PlaneAttempt, PlaneStep, Segment};
 use super::{region_sign, PlaneMetric, PlaneStart};
-use crate::geodesic::{dopri5, Failure, Fate, Integrator, Interpolant, TraceSettings, Visit};
+use crate::geodesic::{dopri5, Failure, Fate, Interpolant, Stepping, TraceSettings, Visit};
 use crate::metric::schwarzschild::binet_taylor::OrbitStep;
 use crate::metric::Region;
 use crate::tensor::{dot3, norm3, normalize3, scale3};
@@ -69,7 +69,7 @@ impl<'m, M: PlaneMetric + ?Sized> Tracer<'m, M> {
 
     fn attempt(&self, h: f64) -> (PlaneAttempt, Option<[f64; 2]>) {
         let f = |phi: f64, w: &[f64; 2]| Self::rhs(self.metric, &self.segment, self.inv_b2, phi, w);
-        let (step, error) = Interpolant::step(self.settings.integrator, &f, self.phi, &self.w, &self.dw, h);
+        let (step, error) = Interpolant::step(self.settings.stepping, &f, self.phi, &self.w, &self.dw, h);
         (PlaneAttempt::Runge(step), error)
     }
 
@@ -85,7 +85,7 @@ impl<'m, M: PlaneMetric + ?Sized> Tracer<'m, M> {
         let mut h = self.h.min(self.settings.max_step_fraction);
         let step = loop {
             let (step, error) = self.attempt(h);
-            let (Some(error), Integrator::Adaptive { rtol }) = (error, self.settings.integrator) else {
+            let (Some(error), Stepping::Adaptive { rtol }) = (error, self.settings.stepping) else {
                 break step;
             };
             let err = self.error_norm(&self.w, &step.y1(), h, &error, rtol);
@@ -106,8 +106,8 @@ impl<'m, M: PlaneMetric + ?Sized> Tracer<'m, M> {
     /// integrated (not its deviation from a straight line), at the adaptive integrator's
     /// tolerance; `None` otherwise.
     fn taylor_step(&self) -> Option<PlaneAttempt> {
-        let (Some(mass), false, Integrator::Adaptive { rtol }) =
-            (self.metric.schwarzschild_mass(), self.segment.split, self.settings.integrator)
+        let (Some(mass), false, Stepping::Adaptive { rtol }) =
+            (self.metric.schwarzschild_mass(), self.segment.split, self.settings.stepping)
         else {
             return None;
         };
@@ -230,9 +230,9 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
         phi: 0.0,
         w,
         dw: [0.0, 0.0],
-        h: match settings.integrator {
-            Integrator::Rk4 { step } => step,
-            Integrator::Adaptive { .. } => 0.2,
+        h: match settings.stepping {
+            Stepping::Rk4 { step } => step,
+            Stepping::Adaptive { .. } => 0.2,
         },
         steps: 0,
         max_h: metric.plane_hamiltonian(ray.u, ray.du, ray.b).abs(),
@@ -356,7 +356,7 @@ mod tests {
 
     fn adaptive(rtol: f64, escape_radius: f64) -> TraceSettings {
         TraceSettings {
-            integrator: Integrator::Adaptive { rtol },
+            stepping: Stepping::Adaptive { rtol },
             escape_radius,
             max_steps: 10_000,
             check_every_step: false,

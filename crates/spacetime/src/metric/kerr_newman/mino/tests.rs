@@ -4,7 +4,7 @@
 use super::motion::from_chart;
 use super::tracer::MinoTracer;
 use crate::geodesic::HamiltonianTracer;
-use crate::geodesic::{Fate, Integrator, RayStep, RayTracer, State, TraceSettings, Visit};
+use crate::geodesic::{Fate, RayStep, RayTracer, State, Stepping, TraceSettings, Visit};
 use crate::metric::Metric;
 use crate::metric::{KerrNewman, KerrSchild};
 use crate::observer::Tetrad;
@@ -19,7 +19,7 @@ fn camera_ray(hole: &KerrNewman, at: [f64; 3], dir: [f64; 3]) -> State {
 
 fn settings(rtol: f64, escape_radius: f64) -> TraceSettings {
     TraceSettings {
-        integrator: Integrator::Adaptive { rtol },
+        stepping: Stepping::Adaptive { rtol },
         escape_radius,
         max_step_fraction: 0.5,
         max_steps: 100_000,
@@ -311,7 +311,7 @@ fn the_series_is_the_solutions() {
 fn rk4_steps_trace_the_same_rays() {
     let hole = KerrNewman::new(1.0, 0.9, 0.0);
     for start in rays(&hole).into_iter().step_by(7) {
-        let rk4 = TraceSettings { integrator: Integrator::Rk4 { step: 0.05 }, ..settings(1e-10, 1e3) };
+        let rk4 = TraceSettings { stepping: Stepping::Rk4 { step: 0.05 }, ..settings(1e-10, 1e3) };
         let (taylor, fixed) = (
             seen(&hole, MinoTracer::new(&hole, start, settings(1e-10, 1e3))),
             seen(&hole, MinoTracer::new(&hole, start, rk4)),

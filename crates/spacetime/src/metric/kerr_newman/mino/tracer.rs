@@ -4,7 +4,7 @@
 use super::motion::{from_chart, Constants};
 use super::series::{column, Dense, ORDER};
 use crate::geodesic::taylor;
-use crate::geodesic::{Failure, Fate, Integrator, Interpolant, RayStep, RayTracer, State, Trace, TraceSettings, Visit};
+use crate::geodesic::{Failure, Fate, Interpolant, RayStep, RayTracer, State, Stepping, Trace, TraceSettings, Visit};
 use crate::metric::{KerrNewman, KerrSchild};
 use crate::tensor::Vector4;
 
@@ -66,12 +66,12 @@ impl MinoTracer {
         let horizon_u = 1.0 / hole.horizon_radius();
         let (constants, y) = from_chart(hole, &start);
         let dy = constants.rhs(&y);
-        let next = match settings.integrator {
-            Integrator::Rk4 { step } => {
+        let next = match settings.stepping {
+            Stepping::Rk4 { step } => {
                 let r = 1.0 / y[0];
                 step / (r * r + hole.spin * hole.spin * y[4] * y[4])
             }
-            Integrator::Adaptive { .. } => 0.0,
+            Stepping::Adaptive { .. } => 0.0,
         };
         Self { constants, settings, horizon_u, time: start.x[0], y, dy, next, steps: 0 }
     }
@@ -123,15 +123,15 @@ impl MinoTracer {
         let constants = self.constants;
         let scale = self.step_scale();
         let cap = self.settings.max_step_fraction * scale;
-        let dense = match self.settings.integrator {
-            Integrator::Rk4 { .. } => {
+        let dense = match self.settings.stepping {
+            Stepping::Rk4 { .. } => {
                 let f = |_t: f64, y: &[f64; 8]| constants.rhs(y);
                 let (step, _) =
-                    Interpolant::step(self.settings.integrator, &f, 0.0, &self.y, &self.dy, self.next.min(cap));
+                    Interpolant::step(self.settings.stepping, &f, 0.0, &self.y, &self.dy, self.next.min(cap));
                 self.dy = step.end_derivative();
                 Dense::Rk4(step)
             }
-            Integrator::Adaptive { rtol } => self.taylor_step(self.escape_cap(cap), scale, rtol)?,
+            Stepping::Adaptive { rtol } => self.taylor_step(self.escape_cap(cap), scale, rtol)?,
         };
         // `dy` is RK4's (Taylor steps leave it as it was at the start).
         let y1 = dense.end();
