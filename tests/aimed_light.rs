@@ -11,7 +11,7 @@ mod common;
 
 use common::{assert_agree, replicas, spread};
 use render::scene::Scene;
-use render::settings::{Connector, IntegratorKind};
+use render::settings::{IntegratorKind, LightConnection};
 
 const REPLICAS: u32 = 16;
 
@@ -155,7 +155,7 @@ fn aimed_light_sampling_agrees_with_brute_force_around_a_charged_hole() {
 fn rays_aimed_in_their_plane_agree_with_rays_aimed_in_four_dimensions() {
     let mut scene = room("[spacetime]\ntype = \"ellis\"\nthroat = 0.5");
     let in_plane = replicas(&scene, IntegratorKind::Path, 8, 0..REPLICAS);
-    scene.settings.connector = Connector::Aimed;
+    scene.settings.light_connection = LightConnection::Aimed;
     let four_d = replicas(&scene, IntegratorKind::Path, 8, REPLICAS..2 * REPLICAS);
     assert_agree(&in_plane, &four_d, 0.03, "wormhole room, in-plane vs 4-D aims");
 }
@@ -164,7 +164,7 @@ fn rays_aimed_in_their_plane_agree_with_rays_aimed_in_four_dimensions() {
 fn aimed_rays_agree_with_the_schwarzschild_connector() {
     let mut scene = room("[spacetime]\ntype = \"schwarzschild\"\nmass = 0.25");
     let own = replicas(&scene, IntegratorKind::Path, 8, 0..REPLICAS);
-    scene.settings.connector = Connector::Aimed;
+    scene.settings.light_connection = LightConnection::Aimed;
     // Other seeds: the same ones would share camera rays and BSDF samples with the own
     // connector's render, and agree better than independent estimates do.
     let aimed = replicas(&scene, IntegratorKind::Path, 8, REPLICAS..2 * REPLICAS);

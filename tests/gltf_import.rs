@@ -281,10 +281,7 @@ fn a_base_colour_texel_shows_where_its_uv_says() {
         let hit = s.world.surface(Region::Upper, object, &ray, t);
         let material = &s.world.materials[s.world.object(Region::Upper, object).material];
         let Bsdf::RoughPlastic { diffuse, .. } = material.bsdf(hit.uv, hit.p) else { panic!("{material:?}") };
-        assert!(
-            (diffuse - render::color::Rgb::from_array(expected)).abs().max_element() < 1e-6,
-            "at x = {x}: {diffuse}"
-        );
+        assert!((diffuse - render::rgb::Rgb::from_array(expected)).abs().max_element() < 1e-6, "at x = {x}: {diffuse}");
     }
 }
 

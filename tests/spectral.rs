@@ -159,7 +159,7 @@ fn a_star_ahead_of_a_moving_camera_is_the_blackbody_at_the_doppler_shifted_tempe
             velocity.to_array()
         )
     };
-    let expected: render::color::Rgb = star.seen((doppler, doppler), &());
+    let expected: render::rgb::Rgb = star.seen((doppler, doppler), &());
     let rgb = mean_and_error(&film_of(&text(false))).0;
     for c in 0..3 {
         assert!((rgb[c] / f64::from(expected[c]) - 1.0).abs() < 1e-3, "RGB: {rgb:?} against {expected}");
@@ -170,7 +170,7 @@ fn a_star_ahead_of_a_moving_camera_is_the_blackbody_at_the_doppler_shifted_tempe
     for c in 0..3 {
         assert!((photon[c] / f64::from(expected[c]) - 1.0).abs() < 1e-3, "photon: {photon:?} against {expected}");
     }
-    let rest: render::color::Rgb = star.seen((1.0, 1.0), &());
+    let rest: render::rgb::Rgb = star.seen((1.0, 1.0), &());
     assert!(expected.z / expected.x > 1.3 * rest.z / rest.x, "bluer: {rest} → {expected}");
     let (spectral, error) = mean_and_error(&film_of(&text(true)));
     for c in 0..3 {

@@ -7,7 +7,6 @@
 pub mod accel;
 pub mod camera;
 pub mod camera_path;
-pub mod color;
 pub mod crossing;
 pub mod digest;
 pub mod emission;
@@ -17,6 +16,7 @@ pub mod integrator;
 pub mod material;
 pub mod propagator;
 pub mod renderer;
+pub mod rgb;
 pub mod sampling;
 pub mod scene;
 pub mod settings;

@@ -7,7 +7,7 @@ use crate::film::{Filter, ToneMap};
 pub enum IntegratorKind {
     /// Unidirectional path tracing with next-event estimation and MIS: lights are joined to
     /// shading points by straight rays in flat space, by geodesics in curved spacetime
-    /// ([`Connector`]); by BSDF sampling alone in the poster's intersection mode.
+    /// ([`LightConnection`]); by BSDF sampling alone in the poster's intersection mode.
     Path,
     /// Path tracing that only finds lights by hitting them: the unbiased reference.
     BruteForce,
@@ -21,7 +21,7 @@ pub enum IntegratorKind {
 
 /// How the path integrator joins light points to shading points in curved spacetime.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Connector {
+pub enum LightConnection {
     /// The spacetime's own connector where it has one (Schwarzschild), else rays aimed by
     /// Newton's method: in the ray's plane where the spacetime is static and spherically
     /// symmetric, in 4-D elsewhere.
@@ -73,7 +73,7 @@ pub struct RenderSettings {
     pub integrator: IntegratorKind,
     pub photon: PhotonSettings,
     pub intersection: Intersection,
-    pub connector: Connector,
+    pub light_connection: LightConnection,
     pub filter: Filter,
     pub tonemap: ToneMap,
     /// Relative tolerance of the adaptive geodesic integrator. The default, 1e-7, is derived from
@@ -110,7 +110,7 @@ impl Default for RenderSettings {
             integrator: IntegratorKind::Path,
             photon: PhotonSettings::default(),
             intersection: Intersection::Chord,
-            connector: Connector::Auto,
+            light_connection: LightConnection::Auto,
             filter: Filter::default(),
             tonemap: ToneMap::default(),
             geodesic_rtol: 1e-7,

@@ -1,8 +1,8 @@
 //! Small scenes and a seeded random stream shared by the crate's unit tests.
 
-use crate::color::Rgb;
 use crate::geometry::Vec3;
 use crate::material::Material;
+use crate::rgb::Rgb;
 use crate::shape::Shape;
 use crate::sky::Sky;
 use crate::texture::Texture;

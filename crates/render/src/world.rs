@@ -475,7 +475,7 @@ impl World {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
+    use crate::rgb::Rgb;
     use crate::texture::Texture;
     use crate::transform::Transform;
 

@@ -6,10 +6,10 @@
 
 use glam::DQuat;
 use render::camera::{Camera, Equirectangular, Fisheye, Projection};
-use render::color::Rgb;
 use render::film::{Film, Filter};
 use render::geometry::Vec3;
 use render::renderer::{render, RenderStats};
+use render::rgb::Rgb;
 use render::scene::Scene;
 use render::settings::{IntegratorKind, RenderSettings};
 use render::sky::Sky;

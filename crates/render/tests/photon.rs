@@ -4,12 +4,12 @@
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
 use render::camera::Camera;
-use render::color::Rgb;
 use render::emission::{BlackbodyLight, Profile, Radiance};
 use render::film::Film;
 use render::geometry::Vec3;
 use render::material::Material;
 use render::renderer::{progressive, render, Checkpointed, Goal, Part, RenderStats, Resume, StartError, Unit};
+use render::rgb::Rgb;
 use render::scene::Scene;
 use render::settings::{IntegratorKind, PhotonSettings, RenderSettings};
 use render::shape::Shape;

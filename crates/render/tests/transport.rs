@@ -4,11 +4,11 @@
 #![allow(clippy::unwrap_used)] // A panic is a failed test.
 
 use render::camera::Camera;
-use render::color::Rgb;
 use render::film::Film;
 use render::geometry::Vec3;
 use render::material::Material;
 use render::renderer::render;
+use render::rgb::Rgb;
 use render::scene::Scene;
 use render::settings::{IntegratorKind, RenderSettings};
 use render::shape::Shape;

@@ -14,7 +14,7 @@
 //!
 //! It lives in the scene crate because that is where image files are read (`scene::files`).
 
-use render::color::Rgb;
+use render::rgb::Rgb;
 use std::path::Path;
 use std::process::ExitCode;
 

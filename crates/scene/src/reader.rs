@@ -6,8 +6,8 @@
 //! naming it and listing the accepted ones (serde's `deny_unknown_fields`, with better messages).
 
 use crate::error::{suggest, SceneError};
-use render::color::Rgb;
 use render::geometry::Vec3;
+use render::rgb::Rgb;
 use std::ops::Range;
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;

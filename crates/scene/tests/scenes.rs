@@ -4,10 +4,10 @@ mod common;
 
 use common::{scenes_dir, temp_dir, CAMERA, TINY_PNG};
 use render::camera::{Equirectangular, Fisheye, Ods, Projection};
-use render::color::Rgb;
 use render::film::{Curve, Filter};
 use render::geometry::Vec3;
 use render::material::{ConductorFresnel, Material};
+use render::rgb::Rgb;
 use render::settings::{IntegratorKind, Intersection};
 use render::sky::{Sky, SkyFrame, StarFieldParams};
 use render::texture::Texture;

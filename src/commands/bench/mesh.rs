@@ -4,9 +4,9 @@
 //! of the triangles, each instance a transform): the time to build the BVHs, the memory a
 //! triangle costs, and the rays per second of renders on one thread and on all.
 
-use render::color::Rgb;
 use render::geometry::Vec3;
 use render::material::Material;
+use render::rgb::Rgb;
 use render::scene::Scene;
 use render::shape::{Instance, InstancedMesh, Shape, TriangleMesh};
 use render::texture::Texture;

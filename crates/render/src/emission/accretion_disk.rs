@@ -13,8 +13,8 @@
 //! gas, never its colour, which stays the blackbody's.
 
 use super::{EmittedBlackbody, Seen};
-use crate::color::luminance;
 use crate::geometry::{Frame, Vec3};
+use crate::rgb::luminance;
 use crate::spectrum::BlackbodyColours;
 use crate::texture::Texture;
 use spacetime::disk::ThinDisk;

@@ -3,7 +3,7 @@
 //! blackbody at `gT` (`g⁵ B_λ(gλ, T) = B_λ(λ, gT)`), so gravity and motion change its colour as
 //! well as its brightness.
 
-use crate::color::Rgb;
+use crate::rgb::Rgb;
 use crate::spectrum::{BlackbodyColours, Colour};
 
 /// Planck's law at `temperature` kelvin, scaled so that its luminance at rest is `luminance`.

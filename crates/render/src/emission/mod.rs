@@ -17,8 +17,8 @@ pub use accretion_disk::DiskLight;
 pub use blackbody::BlackbodyLight;
 pub use shift::{Shift, Shown};
 
-use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
+use crate::rgb::{luminance, Rgb};
 use crate::spectrum::{Colour, LiftedIlluminant};
 use spacetime::Region;
 use std::sync::Arc;

@@ -242,7 +242,7 @@ pub fn read_checkpoint(path: &Path) -> Result<Checkpoint, CheckpointError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
+    use crate::rgb::Rgb;
 
     fn temp_path(name: &str) -> PathBuf {
         std::env::temp_dir().join(format!("nullpath-checkpoint-{}-{name}.exr", std::process::id()))

@@ -16,7 +16,7 @@
 //! image is bit-identical.
 //!
 //! ```
-//! use render::color::Rgb;
+//! use render::rgb::Rgb;
 //! use render::film::{Film, FilmTile, Filter};
 //! use render::sampling::Rng;
 //!
@@ -68,7 +68,7 @@ pub use output::{
 pub use tile::{FilmTile, TileBounds};
 pub use tonemap::{srgb_oetf, to_rgb8, Curve, ToneMap};
 
-use crate::color::Rgb;
+use crate::rgb::Rgb;
 use pixel::{is_valid_sample, PixelSum};
 
 /// A `width × height` grid of pixel accumulators.

@@ -16,7 +16,7 @@
 //! literature, Rousselle et al. 2011, with its usual ε).
 
 use super::Film;
-use crate::color::luminance_f64;
+use crate::rgb::luminance_f64;
 
 /// Linear radiance below which a pixel's error counts as absolute: 1 % of display white.
 pub const BRIGHTNESS_FLOOR: f64 = 0.01;
@@ -72,7 +72,7 @@ pub fn relative_rmse(image: &Film, reference: &Film) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
+    use crate::rgb::Rgb;
     use crate::sampling::Rng;
 
     /// A film whose pixels are means of `n` samples of uniform noise in `[0, 2)·level`.

@@ -473,8 +473,8 @@ pub fn read_metadata(path: &Path) -> Result<Metadata, MetadataReadError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
     use crate::film::Curve;
+    use crate::rgb::Rgb;
     use std::sync::atomic::{AtomicUsize, Ordering};
 
     /// A fresh path in the system temporary directory, unique per process and call.

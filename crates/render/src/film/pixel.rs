@@ -16,7 +16,7 @@
 //! Sums are `f64` and samples are added in the caller's order, so a pixel's value depends only on
 //! which samples it received and in what order — never on threads.
 
-use crate::color::{luminance_f64, Rgb};
+use crate::rgb::{luminance_f64, Rgb};
 
 /// Running sums of one pixel.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

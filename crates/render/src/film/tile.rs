@@ -3,7 +3,7 @@
 //! the order in which tiles are merged cannot change any pixel.
 
 use super::pixel::{is_valid_sample, PixelSum};
-use crate::color::Rgb;
+use crate::rgb::Rgb;
 
 /// A half-open rectangle of pixels, `x0 ≤ x < x1`, `y0 ≤ y < y1`, in absolute film coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -99,7 +99,7 @@ pub fn to_rgb8(film: &Film, tonemap: &ToneMap) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
+    use crate::rgb::Rgb;
 
     #[test]
     fn srgb_oetf_known_values() {

@@ -19,10 +19,10 @@
 
 use super::light::{Bounce, LightSampling, Lit, Shading};
 use super::stats::PathStats;
-use crate::color::Rgb;
 use crate::emission::{Seen, Shift, Shown};
 use crate::geometry::{Frame, Vec3};
 use crate::propagator::{Arrival, Propagator, RayEnd};
+use crate::rgb::Rgb;
 use crate::sampling::Sampler;
 use crate::settings::{IntegratorKind, RenderSettings};
 use crate::shape::offset_origin;

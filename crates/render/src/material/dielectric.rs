@@ -82,7 +82,7 @@ pub(super) fn sample<C: Colour>(eta: f64, transmittance: C, wo: Vec3, uc: f64) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
+    use crate::rgb::Rgb;
 
     #[test]
     fn snell_law_and_round_trip() {

@@ -10,7 +10,7 @@
 //! All cosines are measured against the interface normal `+z` of the local shading frame; `eta` is the
 //! relative index `n_inside / n_outside`, "outside" being the side the normal points to.
 
-use crate::color::Rgb;
+use crate::rgb::Rgb;
 use crate::spectrum::Colour;
 
 /// Unpolarised Fresnel reflectance of a smooth dielectric interface (Born & Wolf, *Principles of Optics*,

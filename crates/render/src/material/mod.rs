@@ -56,8 +56,8 @@ pub use fresnel::ConductorFresnel;
 pub use microfacet::roughness_to_alpha;
 pub use normal_map::NormalMap;
 
-use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::rgb::Rgb;
 use crate::shape::SurfaceHit;
 use crate::spectrum::Colour;
 use crate::texture::Texture;

@@ -62,7 +62,7 @@ impl NormalMap {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
+    use crate::rgb::Rgb;
 
     fn map(texel: Rgb, scale: f64) -> NormalMap {
         NormalMap { image: Arc::new(ImageData::new(1, 1, vec![texel]).unwrap()), scale }

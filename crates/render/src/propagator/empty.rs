@@ -35,8 +35,8 @@ impl Propagator {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
     use crate::propagator::RayEnd;
+    use crate::rgb::Rgb;
     use crate::settings::Intersection;
     use crate::shape::Shape;
     use crate::sky::Sky;

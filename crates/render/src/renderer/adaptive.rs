@@ -98,8 +98,8 @@ fn block_deviation(film: &Film, block: TileBounds) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
     use crate::renderer::NoiseTarget;
+    use crate::rgb::Rgb;
     use crate::sampling::Rng;
 
     /// A 32 × 16 film, each pixel `n` samples; the right half's samples are ten times noisier.

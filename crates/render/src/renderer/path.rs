@@ -12,10 +12,10 @@
 //! they lower the error most (see `adaptive`).
 
 use super::{adaptive, propagator, Goal, Outcome, Part, Progressive, RenderStats, Unit};
-use crate::color::Rgb;
 use crate::film::{noise, write_checkpoint, Film, FilmTooLarge, ImageWriteError, Metadata, TileBounds};
 use crate::integrator::{PathIntegrator, PathStats};
 use crate::propagator::Propagator;
+use crate::rgb::Rgb;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use rayon::prelude::*;

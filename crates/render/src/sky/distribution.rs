@@ -13,8 +13,8 @@
 //! distribution cannot be used with another sky, nor a sky with another kind's distribution.
 
 use super::{EquirectDistribution, Gradient, LatLongGrid, Sky, StarDistribution};
-use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
+use crate::rgb::{luminance, Rgb};
 use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
 use std::f64::consts::PI;
 

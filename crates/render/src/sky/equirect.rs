@@ -31,8 +31,8 @@
 //! ```
 
 use super::SkyFrame;
-use crate::color::{luminance, Rgb};
 use crate::geometry::Vec3;
+use crate::rgb::{luminance, Rgb};
 use crate::sampling::PiecewiseConstant2D;
 use crate::texture::image_data::{ImageData, WrapMode};
 use std::f64::consts::{FRAC_1_PI, PI};

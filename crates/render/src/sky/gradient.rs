@@ -19,8 +19,8 @@
 //! ```
 
 use super::SkyFrame;
-use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::rgb::Rgb;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gradient {

@@ -37,8 +37,8 @@
 //! ```
 
 use super::SkyFrame;
-use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::rgb::Rgb;
 use std::f64::consts::FRAC_PI_2;
 
 #[derive(Clone, Copy, Debug, PartialEq)]

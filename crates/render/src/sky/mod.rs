@@ -36,8 +36,8 @@ pub use gradient::Gradient;
 pub use grid::LatLongGrid;
 pub use stars::{Star, StarDistribution, StarField, StarFieldParams};
 
-use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::rgb::Rgb;
 use crate::spectrum::Colour;
 
 /// The radiance from infinity in each direction. See the module documentation.

@@ -26,7 +26,7 @@ use super::{
     xyz_to_linear_srgb, Blackbody, BlackbodyColours, RgbIlluminantSpectrum, RgbUpsampler, SampledSpectrum,
     SampledWavelengths, SigmoidPolynomial, Spectrum, N_WAVELENGTHS,
 };
-use crate::color::{luminance, Rgb};
+use crate::rgb::{luminance, Rgb};
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Sub};
 

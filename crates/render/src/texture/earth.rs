@@ -6,7 +6,7 @@
 //! (fBm of Perlin noise), so the texture has no seam at the date line and no pinching at the
 //! poles, which a flat image wrapped around a sphere has.
 
-use crate::color::Rgb;
+use crate::rgb::Rgb;
 use noise::{Fbm, MultiFractal, NoiseFn, Perlin};
 
 /// The planet's noise fields and proportions.

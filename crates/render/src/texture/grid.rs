@@ -34,7 +34,7 @@
 //! ]
 //! ```
 
-use crate::color::Rgb;
+use crate::rgb::Rgb;
 
 /// Which family a highlighted line belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

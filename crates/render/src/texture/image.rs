@@ -18,7 +18,7 @@
 //! reflectance = { type = "image", file = "textures/poster.png", uv_scale = [2, 1] }
 //! ```
 
-use crate::color::Rgb;
+use crate::rgb::Rgb;
 use crate::texture::image_data::{ImageData, WrapMode};
 
 /// The image's colour at scaled coordinates `st` (repeating, `t` up).

@@ -9,8 +9,8 @@
 //! `(s, t)` used by [`ImageData::sample`]; `t` runs **down** the image (row 0 at the top), as stored in
 //! files. Textures flip `t` themselves.
 
-use crate::color::Rgb;
 use crate::digest::{write_f64s, ContentDigest, Hex};
+use crate::rgb::Rgb;
 use std::fmt;
 
 /// A linear-RGB raster, row-major from the top-left pixel. Never empty.

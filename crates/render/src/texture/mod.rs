@@ -27,8 +27,8 @@ pub mod image_data;
 
 pub use grid::{GridAxis, GridHighlight};
 
-use crate::color::Rgb;
 use crate::geometry::Vec3;
+use crate::rgb::Rgb;
 use crate::spectrum::LiftedReflectance;
 use image_data::ImageData;
 use std::sync::Arc;

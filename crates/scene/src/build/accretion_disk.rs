@@ -4,10 +4,10 @@
 
 use super::Builder;
 use crate::reader::{num, Node, Result};
-use render::color::Rgb;
 use render::emission::{DiskLight, Emission, Profile, Radiance};
 use render::geometry::Vec3;
 use render::material::Material;
+use render::rgb::Rgb;
 use render::shape::Shape;
 use render::texture::Texture;
 use render::transform::Transform;

@@ -16,9 +16,9 @@
 use super::Builder;
 use crate::files::gltf_import::{self, GltfScene};
 use crate::reader::{Node, Result, Table};
-use render::color::Rgb;
 use render::geometry::Vec3;
 use render::material::Material;
+use render::rgb::Rgb;
 use render::shape::{Instance, InstancedMesh, Shape, TriangleMesh};
 use render::texture::Texture;
 use render::transform::Transform;

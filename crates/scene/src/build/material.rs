@@ -3,8 +3,8 @@
 use super::Builder;
 use crate::error::suggest;
 use crate::reader::{fmt_rgb, num, Kind, Node, Result, Table};
-use render::color::Rgb;
 use render::material::{ConductorFresnel, Dispersion, Material};
+use render::rgb::Rgb;
 use render::texture::earth::Earth;
 use render::texture::image_data::ImageData;
 use render::texture::{GridAxis, GridHighlight, Texture};

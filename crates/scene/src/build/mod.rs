@@ -121,7 +121,7 @@ pub(crate) fn scene<'a>(
     };
     let upper_sky = match root.get("sky") {
         Some(n) => b.sky(&n)?,
-        None => Sky::Constant(render::color::Rgb::ZERO),
+        None => Sky::Constant(render::rgb::Rgb::ZERO),
     };
     let lower_sky = match root.get("lower") {
         Some(n) => {
@@ -134,10 +134,10 @@ pub(crate) fn scene<'a>(
             }
             match lower.get("sky") {
                 Some(n) => b.sky(&n)?,
-                None => Sky::Constant(render::color::Rgb::ZERO),
+                None => Sky::Constant(render::rgb::Rgb::ZERO),
             }
         }
-        None => Sky::Constant(render::color::Rgb::ZERO),
+        None => Sky::Constant(render::rgb::Rgb::ZERO),
     };
     let world = World::new(b.materials, (upper, upper_sky), (lower, lower_sky));
     Ok(Scene { spacetime, axis, camera, world, settings, animation: Some(animation) })

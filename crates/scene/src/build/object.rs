@@ -4,10 +4,10 @@ use super::sky::radiance;
 use super::Builder;
 use crate::files::load_obj;
 use crate::reader::{fmt_vec, num, Kind, Loc, Node, Result, Table};
-use render::color::Rgb;
 use render::emission::{BlackbodyLight, Profile, Radiance};
 use render::geometry::Vec3;
 use render::material::Material;
+use render::rgb::Rgb;
 use render::shape::{Shape, ShapeError};
 use render::texture::Texture;
 use render::transform::Transform;
@@ -180,7 +180,7 @@ fn emission(n: &Node<'_>) -> Result<Emission> {
             if !(luminance >= 0.0 && luminance.is_finite()) {
                 return Err(t.loc("luminance").err(format!("must be ≥ 0, got {}", num(luminance))));
             }
-            if luminance > render::color::MAX_RADIANCE {
+            if luminance > render::rgb::MAX_RADIANCE {
                 return Err(t.loc("luminance").err(super::sky::too_bright(luminance)));
             }
             let light = BlackbodyLight::new(temperature, luminance).ok_or_else(|| {

@@ -4,7 +4,7 @@ use crate::reader::{num, Node, Result, Table, Tagged};
 use render::emission::Shown;
 use render::film::{Curve, DataChannel, Filter, FilterError, FilterKind, SpectrumChannels, ToneMap, FILTERS};
 use render::integrator::photon;
-use render::settings::{Connector, IntegratorKind, Intersection, PhotonSettings, RenderSettings};
+use render::settings::{IntegratorKind, Intersection, LightConnection, PhotonSettings, RenderSettings};
 use spacetime::Spacetime;
 
 pub(super) const RENDER_KEYS: &[&str] = &[
@@ -52,7 +52,7 @@ const INTERSECTIONS: &[(&str, Intersection)] = &[("chord", Intersection::Chord),
 const TONE_CURVES: &[(&str, Curve)] = &[("filmic", Curve::Filmic), ("linear", Curve::Linear)];
 
 /// The light connectors by name.
-const CONNECTORS: &[(&str, Connector)] = &[("auto", Connector::Auto), ("aimed", Connector::Aimed)];
+const CONNECTORS: &[(&str, LightConnection)] = &[("auto", LightConnection::Auto), ("aimed", LightConnection::Aimed)];
 
 /// `[render]`, in a scene of `spacetime` (the photon integrator needs one whose light can be
 /// followed forwards in time).
@@ -119,9 +119,9 @@ pub(super) fn render_settings(t: &Table<'_>, spacetime: &Spacetime) -> Result<Re
         integrator,
         photon,
         intersection,
-        connector: match t.get("connector") {
+        light_connection: match t.get("connector") {
             Some(n) => n.choice("connector", CONNECTORS)?,
-            None => d.connector,
+            None => d.light_connection,
         },
         filter: match t.get("filter") {
             Some(n) => filter(&n)?,

@@ -2,8 +2,8 @@
 
 use super::Builder;
 use crate::reader::{fmt_rgb, num, Kind, Node, Result, Table};
-use render::color::{Rgb, MAX_RADIANCE};
 use render::geometry::Vec3;
+use render::rgb::{Rgb, MAX_RADIANCE};
 use render::sky::stars::max_brightness;
 use render::sky::{Equirect, Gradient, LatLongGrid, Sky, SkyFrame, StarField, StarFieldParams};
 

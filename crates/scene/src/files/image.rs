@@ -11,7 +11,7 @@
 //! [`render::texture::image_data`] for the coordinates lookups use).
 
 use super::policy::{ReadError, ReadPolicy, Resource};
-use render::color::Rgb;
+use render::rgb::Rgb;
 use render::texture::image_data::{srgb_to_linear, ImageData};
 use std::fmt;
 use std::io::Cursor;

@@ -157,8 +157,8 @@ pub(super) fn traced_arrival(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
     use crate::material::Material;
+    use crate::rgb::Rgb;
     use crate::shape::Shape;
     use crate::sky::Sky;
     use crate::texture::Texture;

@@ -8,11 +8,11 @@
 
 use super::super::path::{leave, shift};
 use super::super::stats::PathStats;
-use crate::color::Rgb;
 use crate::emission::{Emission, Seen, Shift};
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::{Propagator, RayEnd};
+use crate::rgb::Rgb;
 use crate::sampling::Sampler;
 use crate::sky::Sky;
 use crate::world::World;

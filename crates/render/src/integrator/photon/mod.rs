@@ -41,8 +41,8 @@ mod trace;
 mod visible;
 
 use super::stats::PathStats;
-use crate::color::Rgb;
 use crate::propagator::Propagator;
+use crate::rgb::Rgb;
 use crate::sampling::{Rng, Sampler};
 use crate::scene::Scene;
 use crate::world::World;

@@ -7,7 +7,7 @@
 //! `τ' = (τ + Φ) (R'/R)²`. With `α < 1` the radius goes to zero slowly enough that the photon
 //! count in it still grows without bound, so the estimate is consistent.
 
-use crate::color::Rgb;
+use crate::rgb::Rgb;
 use std::f64::consts::PI;
 
 /// Fraction of new photons kept per iteration; 2/3 as recommended by Knaus & Zwicker (2011).

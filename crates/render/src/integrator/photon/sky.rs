@@ -16,9 +16,9 @@
 
 use super::aim::Target;
 use super::emit::Photon;
-use crate::color::luminance;
 use crate::geometry::{Frame, Vec3};
 use crate::propagator::Propagator;
+use crate::rgb::luminance;
 use crate::sampling::{concentric_disk, Rng};
 use crate::sky::{Sky, SkyDistribution};
 use spacetime::Region;

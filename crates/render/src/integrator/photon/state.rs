@@ -111,7 +111,7 @@ impl SppmState {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::color::Rgb;
+    use crate::rgb::Rgb;
 
     #[test]
     fn a_state_round_trips_every_bit_and_damage_is_refused() {

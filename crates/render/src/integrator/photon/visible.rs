@@ -9,11 +9,11 @@
 use super::super::path::{leave, segment_end, shift, SegmentEnd};
 use super::super::stats::PathStats;
 use super::background::{self, Background, Vertex};
-use crate::color::Rgb;
 use crate::emission::{Seen, Shift, Shown};
 use crate::geometry::{Frame, Vec3};
 use crate::material::Bsdf;
 use crate::propagator::Propagator;
+use crate::rgb::Rgb;
 use crate::sampling::Sampler;
 use crate::world::World;
 use spacetime::Region;

@@ -50,8 +50,8 @@
 //! background = [0.002, 0.002, 0.004]
 //! ```
 
-use crate::color::{Rgb, MAX_RADIANCE};
 use crate::geometry::{Frame, Vec3};
+use crate::rgb::{Rgb, MAX_RADIANCE};
 use crate::sampling::{uniform_cone, Rng};
 use crate::spectrum::{BlackbodyColours, Colour};
 use std::f64::consts::PI;

@@ -1,5 +1,5 @@
 use super::*;
-use crate::color::luminance;
+use crate::rgb::luminance;
 use crate::sampling::uniform_sphere;
 
 fn field(density: f64, radius_deg: f64, seed: u64) -> StarField {

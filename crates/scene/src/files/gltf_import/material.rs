@@ -17,9 +17,9 @@
 use super::check::view_in_buffer;
 use super::source::Sources;
 use super::{contained, named, short};
-use render::color::Rgb;
 use render::material::microfacet::SMOOTH_ALPHA;
 use render::material::{ConductorFresnel, Material, NormalMap};
+use render::rgb::Rgb;
 use render::texture::image_data::{srgb_to_linear, ImageData};
 use render::texture::Texture;
 use render::world::Emission;

@@ -21,8 +21,8 @@ pub(crate) use material::GltfMaterial;
 pub(crate) use primitive::Primitive;
 
 use super::{ReadPolicy, Resource};
-use render::color::Rgb;
 use render::geometry::Vec3;
+use render::rgb::Rgb;
 use render::transform::Transform;
 use source::Sources;
 use std::path::Path;

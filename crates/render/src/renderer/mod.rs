@@ -28,7 +28,7 @@ use crate::integrator::photon::{self, SppmState};
 use crate::integrator::PathStats;
 use crate::propagator::Propagator;
 use crate::scene::Scene;
-use crate::settings::{Connector, IntegratorKind};
+use crate::settings::{IntegratorKind, LightConnection};
 use path::{PathRender, PathResume};
 use sppm::{SppmRender, SppmResume};
 use std::path::Path;
@@ -174,9 +174,9 @@ pub fn propagator(scene: &Scene) -> Propagator {
     .with_axis(scene.axis)
     .with_camera(scene.camera.region, scene.camera.position);
     let propagator = if objects > 0.0 { propagator.with_chord_scale(objects) } else { propagator };
-    match scene.settings.connector {
-        Connector::Auto => propagator,
-        Connector::Aimed => propagator.with_generic_connector(),
+    match scene.settings.light_connection {
+        LightConnection::Auto => propagator,
+        LightConnection::Aimed => propagator.with_generic_connector(),
     }
 }
 

@@ -26,7 +26,7 @@ use std::time::{Duration, Instant};
 mod data_only;
 
 /// The scene rendered when none is named.
-pub const DEFAULT_SCENE: &str = include_str!("../../scenes/room-black-hole.toml");
+pub const DEFAULT_SCENE: &str = include_str!("../../../scenes/room-black-hole.toml");
 pub const DEFAULT_SCENE_NAME: &str = "<default scene: scenes/room-black-hole.toml>";
 
 /// Largest image side, in pixels.
