@@ -2,7 +2,11 @@
 //! segment (a geodesic step's chord) with a maximum distance, and every material works in the local
 //! orthonormal frame of an observer at the hit.
 //!
-//! Data flows one way: `geometry` → `shape` → `accel` → `texture`/`material`/`sky` → `sampling` → `film`.
+//! The scene (`shape`, `accel`, `material`, `texture`, `sky`, `camera`, `world`) is what rays
+//! meet; the `propagator` follows rays through it along the spacetime's geodesics; the light
+//! transport of `integrator` sends paths through the propagator; the `renderer` drives an
+//! integrator over the `film`. This crate reads no files: the scene crate reads what a scene names
+//! and builds a [`scene::Scene`]. ARCHITECTURE.md at the repository's root maps the whole workspace.
 
 pub mod accel;
 pub mod camera;

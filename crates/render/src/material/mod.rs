@@ -228,7 +228,9 @@ impl Material {
     pub fn resolve<C: Colour>(&self, uv: [f64; 2], p: Vec3, lambda: &mut C::Lambda) -> Bsdf<C> {
         let albedo = |t: &Texture, lambda: &C::Lambda| match t {
             Texture::Constant(c) => C::lifted_reflectance(c, lambda),
-            _ => C::reflectance(t.eval(uv, p).clamp(Rgb::ZERO, Rgb::ONE), lambda),
+            Texture::Checker { .. } | Texture::Grid { .. } | Texture::Image { .. } | Texture::Earth(_) => {
+                C::reflectance(t.eval(uv, p).clamp(Rgb::ZERO, Rgb::ONE), lambda)
+            }
         };
         match self {
             Material::Diffuse { reflectance } => Bsdf::Diffuse { reflectance: albedo(reflectance, lambda) },
