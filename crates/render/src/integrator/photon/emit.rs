@@ -84,10 +84,10 @@ impl Sources {
 
 /// The least share of a region's photons for its sky and for its lights when it has both. By
 /// power alone a sun starves the sky, which is all the light on the earth's night side: with
-/// 0.1 % of the photons it shows as blotches (`scenes/wormhole-room-space.toml`). A tenth costs
-/// the sunlit side little (image RMSE against the reference unchanged within noise, +3 % time;
-/// half by power and half equally: +5 % RMSE, +10 % time, as sky photons mostly start far out
-/// and miss). Any share is unbiased: the photon's power is divided by it.
+/// a thousandth of the photons it shows as blotches (`scenes/wormhole-room-space.toml`). A tenth
+/// costs the sunlit side little, while larger shares spend photons on sky light that mostly
+/// starts far out and misses (measurements in `docs/perf-journal.md`, "Photon shares of sky and
+/// lights"). Any share is unbiased: the photon's power is divided by it.
 const MIN_SHARE: f64 = 0.1;
 
 /// Probabilities of starting a photon in the upper and the lower region.
