@@ -2,7 +2,7 @@
 
 use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::{Arg, ArgMatches, FromArgMatches, Parser, ValueEnum};
-use spacetime::metric::{MetricDescriptor, ParameterDescriptor, SPACETIMES};
+use spacetime::metric::{find, parameters_of, MetricDescriptor, ParameterDescriptor, SPACETIMES};
 use spacetime::scattering::{scatter, Scattering};
 use spacetime::{Fate, Spacetime, Stepping};
 
@@ -63,16 +63,7 @@ fn flag(name: &str) -> String {
 
 /// Each parameter of the registered metrics once, with the metrics that have it.
 fn registered_parameters() -> Vec<(&'static ParameterDescriptor, Vec<&'static MetricDescriptor>)> {
-    let mut out: Vec<(&'static ParameterDescriptor, Vec<&'static MetricDescriptor>)> = Vec::new();
-    for d in SPACETIMES {
-        for p in d.parameters {
-            match out.iter_mut().find(|(q, _)| q.name == p.name) {
-                Some((_, of)) => of.push(d),
-                None => out.push((p, vec![d])),
-            }
-        }
-    }
-    out
+    parameters_of(SPACETIMES)
 }
 
 /// The parameter flags given on the command line: one flag per parameter of the registered
@@ -130,7 +121,7 @@ fn capitalized(s: &str) -> String {
 /// files' default; checked by the metric's constructor. A flag of a parameter the spacetime does
 /// not have is an error, not ignored.
 fn spacetime(args: &Args) -> Result<Spacetime, String> {
-    let Some(d) = SPACETIMES.iter().find(|d| d.name == args.spacetime) else {
+    let Some(d) = find(&args.spacetime) else {
         let names: Vec<&str> = SPACETIMES.iter().map(|d| d.name).collect();
         return Err(format!("unknown spacetime \"{}\"; expected one of {}", args.spacetime, names.join(", ")));
     };

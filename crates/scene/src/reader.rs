@@ -488,17 +488,8 @@ impl<'a> Table<'a> {
     }
 }
 
-/// A number for messages: as written for ordinary magnitudes, in exponent notation for huge or
-/// tiny ones (so that `1e300` does not print as 301 digits). An `f32` prints in its own
-/// shortest form (`1.1`, not the `1.100000023841858` of its widening to `f64`).
-pub(crate) fn num<T: Copy + Into<f64> + std::fmt::Display + std::fmt::LowerExp>(x: T) -> String {
-    let a = x.into().abs();
-    if a != 0.0 && a.is_finite() && !(1e-5..1e15).contains(&a) {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
-    }
-}
+/// A number as scene files write it (the physics crate's, so that its errors read as ours).
+pub(crate) use spacetime::metric::num;
 
 /// `[x, y, z]` as written in scene files.
 pub(crate) fn fmt_vec(v: Vec3) -> String {

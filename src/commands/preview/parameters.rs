@@ -1,8 +1,8 @@
 //! The spacetime's parameters as the preview's sliders show them. The metric's descriptor lists
 //! them with their ranges and rebuilds the spacetime from new values
 //! ([`MetricDescriptor::sliders`], [`MetricDescriptor::with_parameters`]); the preview keeps each
-//! slider's range that of the scene file's spacetime, so that moving a slider does not move the range under it, narrowed to the
-//! values the spacetime allows with the other parameters as they are (|spin| ≤ mass for Kerr,
+//! slider's range that of the scene file's spacetime, so that moving a slider does not move the
+//! range under it, narrowed to the values the spacetime allows with the other parameters as they are (|spin| ≤ mass for Kerr,
 //! spin² + charge² ≤ mass² for Kerr–Newman, …), so that a slider never offers a value the
 //! server must refuse.
 

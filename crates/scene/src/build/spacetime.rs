@@ -9,7 +9,7 @@
 use super::metric;
 use crate::reader::{Node, Result, Table};
 use render::geometry::Vec3;
-use spacetime::metric::{MetricDescriptor, ParameterError, WRITTEN_NAME};
+use spacetime::metric::{parameters_of, MetricDescriptor, ParameterError, WRITTEN_NAME};
 use spacetime::Spacetime;
 
 /// The spacetime of a scene file: the metric, its symmetry axis in the world (a spinning hole's
@@ -117,17 +117,8 @@ pub fn spacetime_table(spacetimes: &[&MetricDescriptor]) -> String {
     );
     out += "\nA parameter without a default is required. The parameters:\n\n";
     out += "| parameter | unit | meaning | of |\n|---|---|---|---|\n";
-    let mut seen: Vec<&str> = Vec::new();
-    for p in spacetimes.iter().flat_map(|d| d.parameters) {
-        if seen.contains(&p.name) {
-            continue;
-        }
-        seen.push(p.name);
-        let of: Vec<String> = spacetimes
-            .iter()
-            .filter(|d| d.parameters.iter().any(|q| q.name == p.name))
-            .map(|d| format!("`\"{}\"`", d.name))
-            .collect();
+    for (p, of) in parameters_of(spacetimes) {
+        let of: Vec<String> = of.iter().map(|d| format!("`\"{}\"`", d.name)).collect();
         out += &format!("| `{}` | {} | {} | {} |\n", p.name, p.unit, cell(p.meaning), of.join(", "));
     }
     let oriented = spacetimes.iter().filter(|d| d.oriented).map(|d| d.name).chain([WRITTEN_NAME]);

@@ -197,14 +197,34 @@ pub fn exactly<const N: usize>(values: &[f64]) -> Result<[f64; N], ParameterErro
         .map_err(|_| ParameterError::new("", format!("expected {N} parameter values, got {}", values.len())))
 }
 
-/// A number as scene files write it: plain, or in exponent form when very large or small.
-pub(super) fn num(x: f64) -> String {
-    let a = x.abs();
+/// A number for messages, as scene files write it: plain for ordinary magnitudes, in exponent
+/// form for huge or tiny ones (so that `1e300` does not print as 301 digits); an `f32` in its own
+/// shortest form (`1.1`, not the `1.100000023841858` of its widening). The scene reader writes
+/// its messages with it too, so that a constructor's error reads as the reader's.
+pub fn num<T: Copy + Into<f64> + std::fmt::Display + std::fmt::LowerExp>(x: T) -> String {
+    let a = x.into().abs();
     if a != 0.0 && a.is_finite() && !(1e-5..1e15).contains(&a) {
         format!("{x:e}")
     } else {
         format!("{x}")
     }
+}
+
+/// Each parameter of `spacetimes` once, in the order they first list it, with the metrics that
+/// have it: for the parameter table of the docs and `nullpath geodesic`'s flags.
+pub fn parameters_of<'d>(
+    spacetimes: &[&'d MetricDescriptor],
+) -> Vec<(&'d ParameterDescriptor, Vec<&'d MetricDescriptor>)> {
+    let mut out: Vec<(&'d ParameterDescriptor, Vec<&'d MetricDescriptor>)> = Vec::new();
+    for &d in spacetimes {
+        for p in d.parameters {
+            match out.iter_mut().find(|(q, _)| q.name == p.name) {
+                Some((_, of)) => of.push(d),
+                None => out.push((p, vec![d])),
+            }
+        }
+    }
+    out
 }
 
 /// `value` of `parameter` if finite and ≥ 0.

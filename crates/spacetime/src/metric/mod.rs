@@ -26,8 +26,8 @@ mod written;
 pub use builtin::{Spacetime, WRITTEN_NAME};
 pub use capabilities::{Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers};
 pub use descriptor::{
-    at_most_mass, exactly, non_negative, positive, MetricDescriptor, Parameter, ParameterDescriptor, ParameterError,
-    Range, CHARGE, MASS, SPIN, THROAT,
+    at_most_mass, exactly, non_negative, num, parameters_of, positive, MetricDescriptor, Parameter,
+    ParameterDescriptor, ParameterError, Range, CHARGE, MASS, SPIN, THROAT,
 };
 pub use ellis::{Ellis, ELLIS};
 pub use kerr::{Kerr, KERR};
