@@ -1,0 +1,3 @@
+"""Type stubs of the Rust extension module ``nullpath._nullpath``."""
+
+__version__: str
