@@ -6,7 +6,7 @@ use super::interrupt::{Interrupts, StopReason};
 use super::provenance::{self, Source};
 use super::Failure;
 use clap::Parser;
-use indicatif::{ProgressBar, ProgressStyle};
+use progress::Progress;
 use render::film::{
     check_output_path, check_writable, write_file_atomically, write_image_with_data, DataLayer, Film, ImageFormat,
     Metadata,
@@ -24,6 +24,7 @@ use std::sync::{Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 mod data_only;
+mod progress;
 
 /// The scene rendered when none is named.
 pub const DEFAULT_SCENE: &str = include_str!("../../../scenes/room-black-hole.toml");
@@ -150,6 +151,10 @@ pub struct RenderOptions {
     /// No progress bar or summary.
     #[arg(long)]
     pub quiet: bool,
+    /// Report progress as lines `progress DONE TOTAL` on standard error instead of a bar, for
+    /// programs that run nullpath (the Blender add-on).
+    #[arg(long)]
+    progress_lines: bool,
 }
 
 /// `bytes` in GiB, or MiB below one GiB.
@@ -282,34 +287,17 @@ impl RenderOptions {
         Ok(())
     }
 
-    /// A progress bar on a terminal, unless quiet.
-    fn progress_bar(&self) -> Option<ProgressBar> {
-        (!self.quiet && std::io::stderr().is_terminal()).then(|| {
-            let bar = ProgressBar::new(1);
-            bar.set_style(
-                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta}")
-                    .unwrap_or_else(|_| ProgressStyle::default_bar()),
-            );
-            bar
-        })
+    /// The progress display: a bar on a terminal, or lines, unless quiet.
+    fn progress(&self) -> Progress {
+        Progress::new(self.quiet, self.progress_lines, std::io::stderr().is_terminal())
     }
 
-    /// Renders `scene` on `pool` with a progress bar (on a terminal, unless quiet); setting
-    /// `cancel` stops it within a sample.
+    /// Renders `scene` on `pool` showing its progress; setting `cancel` stops it within a sample.
     pub fn render(&self, scene: &Scene, pool: &rayon::ThreadPool, cancel: &AtomicBool) -> (Film, RenderStats) {
-        let bar = self.progress_bar();
-        let result = pool.install(|| render(scene, cancel, &|done, total| show(&bar, done, total)));
-        if let Some(bar) = &bar {
-            bar.finish_and_clear();
-        }
+        let progress = self.progress();
+        let result = pool.install(|| render(scene, cancel, &|done, total| progress.show(done, total)));
+        progress.finish();
         result
-    }
-}
-
-fn show(bar: &Option<ProgressBar>, done: u64, total: u64) {
-    if let Some(bar) = bar {
-        bar.set_length(total);
-        bar.set_position(done);
     }
 }
 
@@ -598,7 +586,7 @@ impl Command<'_> {
         let start = Instant::now();
         let deadline = args.time_limit.map(|limit| start + limit);
         let finished = (Mutex::new(false), Condvar::new());
-        let bar = args.options.progress_bar();
+        let progress = args.options.progress();
         std::thread::scope(|scope| {
             scope.spawn(|| {
                 let mut next_checkpoint = every.map(|e| start + e);
@@ -627,11 +615,9 @@ impl Command<'_> {
                     done = wake.wait_timeout(done, wait).map(|(d, _)| d).unwrap_or_else(|e| e.into_inner().0);
                 }
             });
-            let progress = |done, total| show(&bar, done, total);
-            let stats = self.pool.install(|| render.run(&self.interrupts.cancel, &progress));
-            if let Some(bar) = &bar {
-                bar.finish_and_clear();
-            }
+            let stats =
+                self.pool.install(|| render.run(&self.interrupts.cancel, &|done, total| progress.show(done, total)));
+            progress.finish();
             *finished.0.lock().unwrap_or_else(|e| e.into_inner()) = true;
             finished.1.notify_all();
             stats
