@@ -224,8 +224,8 @@ def copy_atomically(source, path):
 
 
 def export_gltf(path):
-    """The scene's renderable objects and lights into a binary glTF at `path`, y-up, modifiers
-    applied, cameras left out (the scene file has the camera), lights in unitless intensity
+    """The scene's renderable objects and lights, as they are at the current frame, into a binary
+    glTF at `path`, y-up, modifiers applied, cameras left out (the scene file has the camera), lights in unitless intensity
     (W / 4π: the radiance scale Cycles gives a point light)."""
     options = bpy.ops.export_scene.gltf.get_rna_type().properties.keys()
     # The option was renamed in Blender 3.6.
@@ -242,6 +242,8 @@ def export_gltf(path):
             export_yup=True,
             export_apply=True,
             export_animations=False,
+            # Else the exporter evaluates the scene at frame 0.
+            export_current_frame=True,
             **{lighting: "COMPAT"},
         )
         if result != {"FINISHED"} or not os.path.isfile(written):
@@ -292,11 +294,20 @@ def scene_tables(scene, depsgraph, directory, warnings):
     return tables
 
 
+def evaluate_at_render_frame(depsgraph):
+    """Evaluates the scene itself (the view layer's evaluation, which the glTF exporter reads) at
+    the frame being rendered: an animation render moves only the render's evaluation from frame to
+    frame, and edits made since the last redraw (by a script) are not yet evaluated."""
+    rendered = depsgraph.scene_eval
+    bpy.context.scene.frame_set(rendered.frame_current, subframe=rendered.frame_subframe)
+
+
 def export(scene, depsgraph, directory):
     """Writes scene.toml, scene.glb and the sky into `directory`; the scene file's path and the
     warnings (what was left out)."""
     warnings = []
     tables = scene_tables(scene, depsgraph, directory, warnings)
+    evaluate_at_render_frame(depsgraph)
     export_gltf(os.path.join(directory, GLTF_FILE))
     path = os.path.join(directory, SCENE_FILE)
     write_atomically(path, toml_writer.document(tables).encode("utf-8"))

@@ -179,6 +179,25 @@ def check_axes(scene, hole, directory):
     check(all(abs(a - b) < 1e-5 for a, b in zip(got, expected)), f"the camera is placed relative to the hole, y-up: {got}")
 
 
+def check_animation(scene, image, directory):
+    """An animation renders frame by frame, each frame the scene as it is then: frame 1 is the
+    still render, and at frame 2 the cube has flown out of the picture."""
+    cube = bpy.data.objects["Cube"]
+    cube.keyframe_insert("location", frame=1)
+    cube.location.z += 100
+    cube.keyframe_insert("location", frame=2)
+    scene.frame_start, scene.frame_end = 1, 2
+    scene.nullpath.export_dir = os.path.join(directory, "animation")
+    scene.render.filepath = os.path.join(directory, "frames", "")
+    settings = scene.render.image_settings
+    settings.file_format, settings.color_depth, settings.color_mode = "OPEN_EXR", "32", "RGB"
+    bpy.ops.render.render(animation=True)
+    first, second = (Image(os.path.join(directory, "frames", f"{n:04}.exr")) for n in (1, 2))
+    check(first.rgb == image.rgb, "an animation's frame 1 is the still render")
+    red = sum(second.redness(x, y) > 0.1 for x in range(WIDTH) for y in range(HEIGHT))
+    check(red == 0, f"at frame 2 the cube has left the picture: {red} red pixels")
+
+
 def main():
     args = arguments()
     os.makedirs(args.workdir, exist_ok=True)
@@ -194,6 +213,7 @@ def main():
     check_lensed(scene, image, flat)
     check_round_trip(args.nullpath, curved_dir, image)
     check_axes(scene, hole, args.workdir)
+    check_animation(scene, image, args.workdir)
 
 
 if __name__ == "__main__":
