@@ -7,9 +7,11 @@ glTF exporter's own y-up conversion, so the geometry and the scene file agree), 
 is then moved so that the hole's place is the origin.
 """
 
+import json
 import math
 import os
 import shutil
+import struct
 import tempfile
 
 import bpy
@@ -253,6 +255,17 @@ def export_gltf(path):
         shutil.rmtree(directory, ignore_errors=True)
 
 
+def places_anything(glb):
+    """Whether the binary glTF file has any node: with nothing to render the exporter writes a
+    document without nodes, which nullpath refuses."""
+    with open(glb, "rb") as file:
+        header = file.read(20)  # magic, version, length; the JSON chunk's length and type
+        length, kind = struct.unpack("<II", header[12:20])
+        if header[:4] != b"glTF" or kind != 0x4E4F534A:  # "JSON"
+            raise ExportError("Blender's glTF exporter wrote a file that is not binary glTF")
+        return bool(json.loads(file.read(length)).get("nodes"))
+
+
 def resolution(scene):
     """The image size Blender would render, percentage applied."""
     render = scene.render
@@ -290,8 +303,7 @@ def scene_tables(scene, depsgraph, directory, warnings):
         disk = accretion_disk_table(hole, axis)
         if disk is not None:
             tables["accretion_disk"] = disk
-    tables["objects"] = [{"gltf": GLTF_FILE, "transform": {"translate": numbers(-origin)}}]
-    return tables
+    return tables, origin
 
 
 def evaluate_at_render_frame(depsgraph):
@@ -306,9 +318,14 @@ def export(scene, depsgraph, directory):
     """Writes scene.toml, scene.glb and the sky into `directory`; the scene file's path and the
     warnings (what was left out)."""
     warnings = []
-    tables = scene_tables(scene, depsgraph, directory, warnings)
+    tables, origin = scene_tables(scene, depsgraph, directory, warnings)
     evaluate_at_render_frame(depsgraph)
-    export_gltf(os.path.join(directory, GLTF_FILE))
+    gltf = os.path.join(directory, GLTF_FILE)
+    export_gltf(gltf)
+    if places_anything(gltf):
+        tables["objects"] = [{"gltf": GLTF_FILE, "transform": {"translate": numbers(-origin)}}]
+    else:
+        os.unlink(gltf)  # nothing but the sky renders
     path = os.path.join(directory, SCENE_FILE)
     write_atomically(path, toml_writer.document(tables).encode("utf-8"))
     return path, warnings

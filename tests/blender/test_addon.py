@@ -167,7 +167,7 @@ def check_axes(scene, hole, directory):
     hole.nullpath.spin = MASS / 2
     hole.rotation_euler = (math.radians(90), 0.0, 0.0)  # local Z along Blender's −Y: nullpath's +z
     bpy.context.view_layer.update()
-    tables = export.scene_tables(scene, bpy.context.evaluated_depsgraph_get(), directory, [])
+    tables, _ = export.scene_tables(scene, bpy.context.evaluated_depsgraph_get(), directory, [])
     hole.nullpath.spin, hole.rotation_euler = 0.0, (0.0, 0.0, 0.0)
     bpy.context.view_layer.update()
     spacetime = tables["spacetime"]
@@ -198,6 +198,37 @@ def check_animation(scene, image, directory):
     check(red == 0, f"at frame 2 the cube has left the picture: {red} red pixels")
 
 
+def panorama(path):
+    """An equirectangular image, green, with a red band at its centre (which Blender shows at +X)
+    and blue from there to three quarters (towards −Y)."""
+    width, height = 64, 32
+    image = bpy.data.images.new("panorama", width, height, float_buffer=True)
+    colour = lambda x: (1, 0, 0) if abs(x + 0.5 - width / 2) < 1 else (0, 0, 1) if width / 2 <= x < 3 * width / 4 else (0, 1, 0)  # noqa: E731
+    image.pixels = [c for _ in range(height) for x in range(width) for c in (*colour(x), 1.0)]
+    image.filepath_raw, image.file_format = path, "OPEN_EXR"
+    image.save()
+    return image
+
+
+def check_panorama(scene, hole, directory):
+    """An environment texture is the sky, lying as Blender shows it: a camera at the origin looking
+    along +X sees the panorama's centre, with −Y (the image's right of centre) to its right."""
+    hole.hide_render = True
+    bpy.data.objects["Cube"].hide_render = True
+    bpy.data.objects["Light"].hide_render = True
+    scene.camera.location, scene.camera.rotation_euler = (0, 0, 0), (math.radians(90), 0, math.radians(-90))
+    scene.frame_start = scene.frame_end = scene.frame_current = 1
+    nodes, links = scene.world.node_tree.nodes, scene.world.node_tree.links
+    texture = nodes.new("ShaderNodeTexEnvironment")
+    texture.image = panorama(os.path.join(directory, "panorama.exr"))
+    links.new(texture.outputs["Color"], nodes["Background"].inputs["Color"])
+    sky = render(scene, os.path.join(directory, "panorama"))
+    middle = HEIGHT // 2
+    seen = [sky.rgb[middle * WIDTH + x] for x in (WIDTH // 2, WIDTH * 3 // 4, WIDTH // 4)]
+    dominant = ["RGB"[max(range(3), key=lambda c: rgb[c])] for rgb in seen]
+    check(dominant == ["R", "B", "G"], f"the panorama's centre is ahead (+X), −Y to the right: centre, right, left are {dominant}")
+
+
 def main():
     args = arguments()
     os.makedirs(args.workdir, exist_ok=True)
@@ -214,6 +245,7 @@ def main():
     check_round_trip(args.nullpath, curved_dir, image)
     check_axes(scene, hole, args.workdir)
     check_animation(scene, image, args.workdir)
+    check_panorama(scene, hole, args.workdir)
 
 
 if __name__ == "__main__":
