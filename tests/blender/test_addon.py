@@ -159,6 +159,26 @@ def check_round_trip(binary, directory, image):
     check(image.rgb == engine_exr.rgb, "the render result holds nullpath's image")
 
 
+def check_progress_and_cancel(directory):
+    """The engine's runner reports nullpath's progress up to the whole, and stops it when asked."""
+    from nullpath_addon import runner
+
+    scene_file = os.path.join(directory, "scene.toml")
+    fractions = []
+    runner.run(["render", scene_file, "--output", os.path.join(directory, "progress.exr"), "--progress-lines"],
+               fractions.append, lambda: False)
+    check(fractions and fractions == sorted(fractions) and fractions[-1] == 1.0,
+          f"progress is reported, rising to 1: {len(fractions)} reports, last {fractions[-1] if fractions else None}")
+    arguments = ["render", scene_file, "--output", os.path.join(directory, "cancelled.exr"), "--spp", "1048576"]
+    try:
+        runner.run(arguments, lambda _: None, lambda: True)
+    except runner.RunError as error:
+        check(str(error) == "cancelled", "a cancelled render stops nullpath")
+    else:
+        check(False, "a cancelled render stops nullpath")
+    check(not os.path.exists(os.path.join(directory, "cancelled.exr")), "and leaves no image")
+
+
 def check_axes(scene, hole, directory):
     """The exported scene file's frame: Blender's z-up world in nullpath's y-up one, moved so that
     the hole is at the origin, and a spinning hole's axis its local Z."""
@@ -243,6 +263,7 @@ def main():
     check_shadow(image, flat, projected(scene, hole.matrix_world.translation), shadow_radius_pixels(scene, hole))
     check_lensed(scene, image, flat)
     check_round_trip(args.nullpath, curved_dir, image)
+    check_progress_and_cancel(curved_dir)
     check_axes(scene, hole, args.workdir)
     check_animation(scene, image, args.workdir)
     check_panorama(scene, hole, args.workdir)
