@@ -6,7 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-if ! command -v blender >/dev/null || ! python3 -c "import numpy" 2>/dev/null; then
+# Debian's Blender runs on Debian's Python, whatever python3 is first on PATH.
+if ! command -v blender >/dev/null || ! dpkg -s python3-numpy >/dev/null 2>&1; then
     apt-get update -qq
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends blender python3-numpy >/dev/null
 fi
