@@ -14,7 +14,7 @@
 //! turns rigidly about the spin axis at `Ω` there too, and its Boyer–Lindquist `r` is the
 //! chart's spheroidal radius: at world radius `ρ` in the equatorial plane, `r = √(ρ² − a²)`.
 
-use crate::metric::Scalar;
+use crate::metric::{KerrNewman, Scalar};
 use num_dual::first_derivative;
 
 /// The circular equatorial geodesics of one hole of Kerr's family turning one way, prograde
@@ -64,6 +64,11 @@ impl CircularOrbits {
 
     pub fn mass(&self) -> f64 {
         self.mass
+    }
+
+    /// The hole, its spin about +z.
+    pub fn hole(&self) -> KerrNewman {
+        KerrNewman::new(self.mass, self.sense * self.spin, self.charge)
     }
 
     /// The sense the gas turns about +z: `+1` counter-clockwise seen from +z.
