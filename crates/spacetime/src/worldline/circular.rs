@@ -165,7 +165,8 @@ mod tests {
 
     #[test]
     fn the_orbit_is_a_unit_timelike_geodesic_with_its_constants() {
-        for spacetime in [Spacetime::schwarzschild(1.0), Spacetime::kerr(1.0, 0.9), Spacetime::kerr_newman(1.0, -0.5, 0.4)]
+        for spacetime in
+            [Spacetime::schwarzschild(1.0), Spacetime::kerr(1.0, 0.9), Spacetime::kerr_newman(1.0, -0.5, 0.4)]
         {
             let spacetime = spacetime.expect("valid");
             for direction in [Direction::Prograde, Direction::Retrograde] {

@@ -66,6 +66,8 @@ pub struct Worldline {
     pub(super) chart: Chart,
     /// The start, in the chart integrated in.
     pub(super) start: State,
+    /// The own chart's time at the start, as given (mapped back, it is off by rounding).
+    pub(super) start_time: f64,
     pub(super) pieces: Vec<Piece>,
     /// The own chart's time at each piece's end (NaN where the own chart does not reach).
     pub(super) end_times: Vec<f64>,
@@ -84,7 +86,7 @@ impl Worldline {
         let begin = chart.to_integrated(&start);
         let (pieces, end, horizon) = run(&chart, begin, until, settings);
         let end_times = pieces.iter().map(|p| chart.own_time(&p.step.end.x)).collect();
-        Ok(Worldline { chart, start: begin, pieces, end_times, end, horizon })
+        Ok(Worldline { chart, start: begin, start_time: start.x[0], pieces, end_times, end, horizon })
     }
 }
 
@@ -92,7 +94,7 @@ impl Worldline {
 /// the proper time of a horizon crossing.
 fn run(chart: &Chart, begin: State, until: Until, settings: &TraceSettings) -> (Vec<Piece>, End, Option<f64>) {
     let metric = chart.integrated();
-    let mut tracer = HamiltonianTracer::new(metric, begin, *settings);
+    let mut tracer = HamiltonianTracer::of_body(metric, begin, *settings);
     let mut pieces = Vec::new();
     let mut horizon = None;
     let end = loop {
@@ -110,7 +112,8 @@ fn run(chart: &Chart, begin: State, until: Until, settings: &TraceSettings) -> (
         match tracer.step(h_limit) {
             Ok(step) => {
                 if horizon.is_none() {
-                    horizon = chart.horizon().and_then(|r| crossing(metric, &step, r)).map(|theta| tau + theta * step.h);
+                    horizon =
+                        chart.horizon().and_then(|r| crossing(metric, &step, r)).map(|theta| tau + theta * step.h);
                 }
                 pieces.push(Piece { tau, step });
                 let past_time = matches!(until, Until::CoordinateTime(t) if chart.own_time(&step.end.x) >= t);

@@ -42,14 +42,12 @@ impl std::fmt::Display for StartError {
                 "no observer at {x:?} measures a velocity ({reason}): the point is inside a horizon, off the \
                  chart, or where the metric is degenerate"
             ),
-            StartError::NotUnitTimelike { norm } => write!(
-                f,
-                "the momentum is not a body's of unit rest mass: g^μν p_μ p_ν = {norm}, not −1"
-            ),
-            StartError::PastDirected { energy } => write!(
-                f,
-                "the momentum runs backwards in time: the local observer measures energy {energy} ≤ 0"
-            ),
+            StartError::NotUnitTimelike { norm } => {
+                write!(f, "the momentum is not a body's of unit rest mass: g^μν p_μ p_ν = {norm}, not −1")
+            }
+            StartError::PastDirected { energy } => {
+                write!(f, "the momentum runs backwards in time: the local observer measures energy {energy} ≤ 0")
+            }
         }
     }
 }

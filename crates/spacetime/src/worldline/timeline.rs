@@ -55,8 +55,7 @@ impl Worldline {
     /// slices are spacelike wherever it goes), so there is one, found by bisection on the dense
     /// output of the step that holds it.
     pub fn proper_time_at(&self, t: f64) -> Option<f64> {
-        let start_time = self.chart.own_time(&self.start.x);
-        if !(t >= start_time) {
+        if !(t >= self.start_time) {
             return None;
         }
         // NaN (past the horizon) counts as later than any time.
