@@ -112,7 +112,7 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
 
     /// The tracer of a body (a timelike geodesic) from `start`: Hamilton's equations are light's,
     /// on the mass shell `H = −½μ²` the start is on, and a body at rest, which has no coordinate
-    /// speed, takes steps as light of its energy would ([`HamiltonianTracer::step_scale`]).
+    /// speed, takes steps as light of its energy would (the step scale floors its speed at μ).
     pub fn of_body(metric: &'m M, start: State, settings: TraceSettings) -> Self {
         let rest_mass2 = (-2.0 * metric.hamiltonian(&start.x, &start.p)).max(0.0);
         Self { rest_mass2, ..Self::new(metric, start, settings) }
