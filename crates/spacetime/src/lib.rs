@@ -2,7 +2,8 @@
 //!
 //! Null geodesics of curved spacetimes, as a library a physicist can use on its own: metrics in
 //! Hamiltonian form, local orthonormal frames of observers, integrators with error control, and the
-//! fate of every ray (escaped, captured, through a throat, or failed).
+//! fate of every ray (escaped, captured, through a throat, or failed); and the timelike geodesics
+//! of bodies in free fall ([`worldline`]).
 //!
 //! Conventions: signature (−,+,+,+), G = c = 1, coordinates `x[0] = t`, `p` is the covariant momentum
 //! `p_μ`. Rays are traced *backwards* from the camera: the traced momentum is past-directed, and the
@@ -18,6 +19,7 @@ pub mod metric;
 pub mod observer;
 pub mod scattering;
 pub mod tensor;
+pub mod worldline;
 
 pub use geodesic::{Fate, State, Stepping, Trace, TraceSettings, Visit};
 pub use metric::{

@@ -14,15 +14,20 @@
 //! turns rigidly about the spin axis at `Ω` there too, and its Boyer–Lindquist `r` is the
 //! chart's spheroidal radius: at world radius `ρ` in the equatorial plane, `r = √(ρ² − a²)`.
 
-use crate::metric::Scalar;
+use crate::metric::{KerrNewman, Scalar};
 use num_dual::first_derivative;
 
-/// Prograde circular equatorial geodesics of one hole of Kerr's family (neutral gas; the charge
-/// enters only through the metric).
+/// The circular equatorial geodesics of one hole of Kerr's family turning one way, prograde
+/// (with the spin, as a disk's gas does) or retrograde (neutral bodies; the charge enters only
+/// through the metric).
+///
+/// Both families are the prograde family of a hole whose spin is the spin's component along
+/// the orbits' sense of turning: `+|a|` prograde, `−|a|` retrograde (Bardeen, Press &
+/// Teukolsky 1972, whose upper and lower signs are these), mirrored when they turn about −z.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CircularOrbits {
     mass: f64,
-    /// `|a|`: prograde orbits about a hole spinning about −z are those about +z mirrored.
+    /// The spin along the orbits' sense: `|a|` prograde, `−|a|` retrograde.
     spin: f64,
     charge: f64,
     /// `+1` where the hole spins about +z (or not at all), `−1` about −z: the sense the gas turns.
@@ -47,8 +52,23 @@ impl CircularOrbits {
         Self { mass, spin: spin.abs(), charge, sense }
     }
 
+    /// The same hole's orbits turning the other way: retrograde for prograde, and back.
+    pub fn reversed(&self) -> Self {
+        Self { spin: -self.spin, sense: -self.sense, ..*self }
+    }
+
+    /// Whether these orbits turn against the hole's spin (never, about a hole without one).
+    pub fn is_retrograde(&self) -> bool {
+        self.spin < 0.0
+    }
+
     pub fn mass(&self) -> f64 {
         self.mass
+    }
+
+    /// The hole, its spin about +z.
+    pub fn hole(&self) -> KerrNewman {
+        KerrNewman::new(self.mass, self.sense * self.spin, self.charge)
     }
 
     /// The sense the gas turns about +z: `+1` counter-clockwise seen from +z.
@@ -91,6 +111,25 @@ impl CircularOrbits {
                 outer = mid;
             } else {
                 inner = mid;
+            }
+        }
+        outer
+    }
+
+    /// The radius of the circular photon orbit turning this way, inside which no circular
+    /// geodesic is timelike: the root of `r² − 3Mr + 2Q² + 2a√(Mr − Q²)` (`a` along the
+    /// orbits' sense; Bardeen, Press & Teukolsky 1972 eq. 2.18 with the charge), which is
+    /// negative at the horizon and not below zero at `4M`, by bisection to the last bit.
+    pub fn photon_orbit(&self) -> f64 {
+        let (m, a, q2) = (self.mass, self.spin, self.charge * self.charge);
+        let f = |r: f64| r * r - 3.0 * m * r + 2.0 * q2 + 2.0 * a * (m * r - q2).max(0.0).sqrt();
+        let (mut inner, mut outer) = (m + (m * m - a * a - q2).max(0.0).sqrt(), 4.0 * m);
+        while outer - inner > 4.0 * f64::EPSILON * outer {
+            let mid = 0.5 * (inner + outer);
+            if f(mid) < 0.0 {
+                inner = mid;
+            } else {
+                outer = mid;
             }
         }
         outer
@@ -139,6 +178,31 @@ mod tests {
                 assert!((o.omega - a.signum() * omega).abs() < 1e-15);
             }
         }
+    }
+
+    /// Retrograde orbits: `Ω = −√M/(r^{3/2} − a√M)` (Bardeen, Press & Teukolsky 1972 eq. 2.16,
+    /// lower sign), the ISCO at 9M and the photon orbit at 4M for an extremal hole, 6M and 3M
+    /// without spin, and prograde photon orbits `2M(1 + cos(⅔ arccos(∓a/M)))` (eq. 2.18).
+    #[test]
+    fn retrograde_orbits_and_photon_orbits_match_bardeen_press_teukolsky() {
+        for a in [0.0, 0.5, 0.9, 1.0, -0.7] {
+            let prograde = CircularOrbits::new(1.0, a, 0.0);
+            let retrograde = prograde.reversed();
+            assert!(!prograde.is_retrograde() && retrograde.is_retrograde() == (a != 0.0));
+            let r = 7.0f64;
+            let omega = -a.signum() / (r.powf(1.5) - a.abs());
+            let o = retrograde.orbit(r);
+            assert!((o.omega - omega).abs() < 1e-15, "a = {a}: Ω {} vs {omega}", o.omega);
+            assert!(o.angular_momentum * o.omega > 0.0, "L turns as Ω does");
+            for (orbits, sign) in [(prograde, -1.0), (retrograde, 1.0)] {
+                let exact = 2.0 * (1.0 + ((sign * a.abs()).acos() * 2.0 / 3.0).cos());
+                let photon = orbits.photon_orbit();
+                assert!((photon - exact).abs() < 1e-9, "a = {a}, sign {sign}: {photon} vs {exact}");
+            }
+        }
+        let extremal = CircularOrbits::new(1.0, 1.0, 0.0).reversed();
+        assert!((extremal.isco() - 9.0).abs() < 1e-9 && (extremal.photon_orbit() - 4.0).abs() < 1e-9);
+        assert!(CircularOrbits::new(1.0, 0.9, 0.0).reversed().orbit(3.0f64).u_t.is_nan(), "inside the photon orbit");
     }
 
     #[test]

@@ -98,6 +98,9 @@ pub struct HamiltonianTracer<'m, M: Metric + ?Sized, const N: usize = 8, F: Flow
     next: f64,
     lambda: f64,
     steps: u32,
+    /// `μ² = −g^{μν} p_μ p_ν`: 0 for light, 1 for a body whose momentum is per unit rest mass
+    /// ([`HamiltonianTracer::of_body`]); it floors the speed the step scale divides by.
+    rest_mass2: f64,
     flow: std::marker::PhantomData<F>,
 }
 
@@ -105,6 +108,14 @@ impl<'m, M: Metric + ?Sized> HamiltonianTracer<'m, M> {
     /// The tracer of the ray from `start`.
     pub fn new(metric: &'m M, start: State, settings: TraceSettings) -> Self {
         Self::of_flow(metric, pack(&start), settings)
+    }
+
+    /// The tracer of a body (a timelike geodesic) from `start`: Hamilton's equations are light's,
+    /// on the mass shell `H = −½μ²` the start is on, and a body at rest, which has no coordinate
+    /// speed, takes steps as light of its energy would (the step scale floors its speed at μ).
+    pub fn of_body(metric: &'m M, start: State, settings: TraceSettings) -> Self {
+        let rest_mass2 = (-2.0 * metric.hamiltonian(&start.x, &start.p)).max(0.0);
+        Self { rest_mass2, ..Self::new(metric, start, settings) }
     }
 }
 
@@ -120,7 +131,7 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
             Stepping::Adaptive { .. } => settings.max_step_fraction.min(1.0),
         };
         let flow = std::marker::PhantomData;
-        Self { metric, settings, y, dy, next, lambda: 0.0, steps: 0, flow }
+        Self { metric, settings, y, dy, next, lambda: 0.0, steps: 0, rest_mass2: 0.0, flow }
     }
 
     #[inline]
@@ -148,10 +159,14 @@ impl<'m, M: Metric + ?Sized, const N: usize, F: Flow<N>> HamiltonianTracer<'m, M
 
     /// The affine step whose coordinate displacement is the distance from the centre (at least
     /// the metric's length scale): the length over which a ray's path changes, so the steps that
-    /// error control allows grow and shrink with it.
+    /// error control allows grow and shrink with it. A body's speed counts as at least its rest
+    /// mass (`|v|² + μ²`, the speed of light for momenta per unit mass): at rest it has no
+    /// coordinate speed, and its steps would be unbounded and their proposals, kept relative to
+    /// the scale, would vanish as it starts to fall. For light `μ² = 0` and nothing changes.
     fn step_scale(&self) -> f64 {
         let r = (self.y[1] * self.y[1] + self.y[2] * self.y[2] + self.y[3] * self.y[3]).sqrt();
-        let v = (self.dy[1] * self.dy[1] + self.dy[2] * self.dy[2] + self.dy[3] * self.dy[3]).sqrt();
+        let speed2 = self.dy[1] * self.dy[1] + self.dy[2] * self.dy[2] + self.dy[3] * self.dy[3];
+        let v = (speed2 + self.rest_mass2).sqrt();
         r.max(self.metric.length_scale()) / v
     }
 

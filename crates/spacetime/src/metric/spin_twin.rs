@@ -12,8 +12,12 @@
 //! backward tracer follows through the horizon as it follows any camera ray.
 //!
 //! The twin's points are the hole's turned about the spin axis by `δ(r) = φ̄ − φ̃ =
-//! 2 atan(a/r) − 2a ∫_r^∞ dr'/Δ` (zero far away) with `t' = −t − H(r)`, `H' = 2(r² + a² − Δ)/Δ`;
-//! the spheroidal radius `r` is the same in both. Covectors go across with the Jacobian of the
+//! 2 atan(a/r) − 2a ∫_r^∞ dr'/Δ` (zero far away) with `t' = −t − H(r)`, `H' = 2(r² + a² − Δ)/Δ`,
+//! so `H = 2(r* − r)` with the tortoise radius `dr*/dr = (r² + a²)/Δ`:
+//! `H = 4M ln((r − r₋)/M) − 2(r₊² + a²) ∫_r^∞ dr'/Δ` (its constant chosen so; no stationary
+//! metric sees it). The spheroidal radius `r` is the same in both. Ray tracing needs only the
+//! spatial map; the time map is what places a body falling through the future horizon
+//! ([`crate::worldline`]) at the hole's coordinate times. Covectors go across with the Jacobian of the
 //! map back, `p'_μ = p_ν ∂x^ν/∂x'^μ`, so `p_t` changes sign and the conserved energy of the
 //! forward ray is that of the backward one.
 
@@ -62,6 +66,23 @@ impl SpinTwin {
         [y[1], y[2], y[3]]
     }
 
+    /// A point of the twin's chart in the hole's, its time included (NaN inside the horizon).
+    pub fn event_from_twin(&self, x: &Vector4) -> Vector4 {
+        self.point(x, Way::FromTwin)
+    }
+
+    /// A contravariant vector `v` at point `x` of the twin's chart in the hole's:
+    /// `v^μ = ∂x^μ/∂x'^ν v'^ν`.
+    pub fn vector_from_twin(&self, x: &Vector4, v: &Vector4) -> Vector4 {
+        let j = self.jacobian(x, Way::FromTwin);
+        std::array::from_fn(|mu| (0..4).map(|nu| j[mu][nu] * v[nu]).sum())
+    }
+
+    /// The hole whose twin this is.
+    pub fn hole(&self) -> KerrNewman {
+        self.hole
+    }
+
     fn cross(&self, x: &Vector4, p: &Covector4, way: Way) -> (Vector4, Covector4) {
         let y = self.point(x, way);
         // `∂x/∂y` is the Jacobian of the opposite way, taken at `y`.
@@ -70,12 +91,11 @@ impl SpinTwin {
         (y, q)
     }
 
-    /// The point `way` maps `x` to (its time up to the constant in `H`, which no stationary
-    /// metric sees).
+    /// The point `way` maps `x` to: `t' = −t − H(r)` either way, turned by `±δ(r)`.
     fn point(&self, x: &Vector4, way: Way) -> Vector4 {
         let r = self.hole.radial_coordinate(x);
         let (s, c) = (sign(way) * self.rotation(r)).sin_cos();
-        [-x[0], c * x[1] - s * x[2], s * x[1] + c * x[2], x[3]]
+        [-x[0] - self.time_shift(r), c * x[1] - s * x[2], s * x[1] + c * x[2], x[3]]
     }
 
     /// `∂y/∂x` of the map `way` at `x` (`J[μ][ν] = ∂y^μ/∂x^ν`).
@@ -115,14 +135,41 @@ impl SpinTwin {
         r * r - 2.0 * mass * r + spin * spin + charge * charge
     }
 
-    /// `δ(r) = 2 atan(a/r) − 2a ∫_r^∞ dr'/Δ`, with `Δ = (r − r₊)(r − r₋)`:
-    /// `∫_r^∞ dr'/Δ = ln(1 + d/(r − r₊))/d`, `d = r₊ − r₋`, which is `1/(r − r₊)` at `d = 0`.
-    fn rotation(&self, r: f64) -> f64 {
+    /// `∫_r^∞ dr'/Δ` with `Δ = (r − r₊)(r − r₋)`: `ln(1 + d/(r − r₊))/d`, `d = r₊ − r₋`, which
+    /// is `1/(r − r₊)` at `d = 0` (NaN between the horizons, where the charts do not meet).
+    fn tail(&self, r: f64) -> f64 {
+        let d = self.horizon_gap();
+        let outer = self.hole.mass + 0.5 * d;
+        if d > 0.0 {
+            (d / (r - outer)).ln_1p() / d
+        } else {
+            1.0 / (r - outer)
+        }
+    }
+
+    /// `d = r₊ − r₋ = 2√(M² − a² − Q²)`.
+    fn horizon_gap(&self) -> f64 {
         let KerrNewman { mass, spin, charge } = self.hole;
-        let d = 2.0 * (mass * mass - spin * spin - charge * charge).max(0.0).sqrt();
-        let outer = mass + 0.5 * d;
-        let tail = if d > 0.0 { (d / (r - outer)).ln_1p() / d } else { 1.0 / (r - outer) };
-        2.0 * (spin / r).atan() - 2.0 * spin * tail
+        2.0 * (mass * mass - spin * spin - charge * charge).max(0.0).sqrt()
+    }
+
+    /// `δ(r) = 2 atan(a/r) − 2a ∫_r^∞ dr'/Δ`.
+    fn rotation(&self, r: f64) -> f64 {
+        let spin = self.hole.spin;
+        2.0 * (spin / r).atan() - 2.0 * spin * self.tail(r)
+    }
+
+    /// `H(r) = 2(r* − r) = 4M ln((r − r₋)/M) − 2(r₊² + a²) ∫_r^∞ dr'/Δ`, whose derivative is
+    /// `4M/(r − r₋) + 2(r₊² + a²)/Δ = 2(2Mr − Q²)/Δ` since `Δ(r₊) = 0`. Partial fractions in
+    /// this form stay exact as the horizons merge (`d → 0`). NaN inside the outer horizon.
+    fn time_shift(&self, r: f64) -> f64 {
+        let KerrNewman { mass, spin, .. } = self.hole;
+        let d = self.horizon_gap();
+        let (outer, inner) = (mass + 0.5 * d, mass - 0.5 * d);
+        if r <= outer {
+            return f64::NAN;
+        }
+        4.0 * mass * ((r - inner) / mass).ln() - 2.0 * (outer * outer + spin * spin) * self.tail(r)
     }
 
     /// `δ'(r) = −2a/(r² + a²) + 2a/Δ`.
@@ -200,6 +247,22 @@ mod tests {
         }
     }
 
+    /// The time map's shift `H` has the derivative the Jacobian uses, for every kind of hole
+    /// (extremal ones included, where the partial fractions merge): a wrong `H` would place
+    /// bodies at the wrong times, which the isometry test (on the Jacobian alone) cannot see.
+    #[test]
+    fn the_time_shift_is_the_integral_of_its_rate() {
+        for twin in holes().into_iter().chain([SpinTwin::new(1.0, 0.0, 0.0), SpinTwin::new(1.0, 0.0, 0.7)]) {
+            for r in [2.3, 3.0, 7.5, 40.0] {
+                let h = 1e-5 * r;
+                let slope = (twin.time_shift(r + h) - twin.time_shift(r - h)) / (2.0 * h);
+                let rate = twin.time_shift_rate(r);
+                assert!((slope - rate).abs() < 1e-7 * rate.abs(), "{twin:?} at r = {r}: {slope} vs {rate}");
+            }
+            assert!(twin.time_shift(0.5 * twin.hole.horizon_radius()).is_nan(), "inside the horizon");
+        }
+    }
+
     #[test]
     fn points_and_momenta_come_back() {
         for twin in holes() {
@@ -207,7 +270,7 @@ mod tests {
                 let p = [-1.0, 0.3, -0.2, 0.7];
                 let (y, q) = twin.to_twin(&x, &p);
                 let (x2, p2) = twin.from_twin(&y, &q);
-                for k in 1..4 {
+                for k in 0..4 {
                     assert!((x2[k] - x[k]).abs() < 1e-12 && (p2[k] - p[k]).abs() < 1e-12, "{x:?} {p:?}: {x2:?} {p2:?}");
                 }
                 assert_eq!(q[0], -p[0], "the energy's sign turns with time");
