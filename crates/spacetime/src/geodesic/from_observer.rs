@@ -203,6 +203,15 @@ impl<'s> Photon<'s> {
         }))
     }
 
+    /// `H = ½ g^{μν} p_μ p_ν` of `state`, a state of the forward chart (zero for light).
+    pub fn hamiltonian(&self, state: &State) -> f64 {
+        let traced = forward_state(state);
+        match self.way {
+            Way::Straight | Way::Reversed => self.spacetime.metric().hamiltonian(&traced.x, &traced.p),
+            Way::Twin(twin) => twin.twin().hamiltonian(&traced.x, &traced.p),
+        }
+    }
+
     /// The constants of motion of `state`, a state of the forward chart.
     pub fn conserved(&self, state: &State) -> Conserved {
         let metric = self.spacetime.metric();
@@ -327,12 +336,7 @@ mod tests {
                     assert!((a - b).abs() < tolerance * (1.0 + b.abs()), "{a} vs {b} at λ = {}", r.lambda);
                 }
             }
-            // The forward chart is the traced one with time reversed: H is the traced state's.
-            let traced = forward_state(&r.state);
-            let h = match photon.traced_start() {
-                Some((m, _)) => m.metric().hamiltonian(&traced.x, &traced.p),
-                None => f64::NAN,
-            };
+            let h = photon.hamiltonian(&r.state);
             assert!(h.abs() < tolerance, "H = {h} at λ = {}", r.lambda);
             assert!(r.state.x[0] > previous_t, "time runs forwards");
             previous_t = r.state.x[0];
