@@ -9,7 +9,7 @@ use numpy::{AllowTypeChange, IntoPyArray, PyArrayLike1, PyArrayLikeDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use spacetime::geodesic::from_observer::{Photon, Recorded};
+use spacetime::geodesic::from_observer::{NoLaunch, Photon, Recorded};
 use spacetime::geodesic::Failure;
 use spacetime::scattering::scatter;
 use spacetime::{Fate, Region, Spacetime, Stepping, TraceSettings};
@@ -124,7 +124,10 @@ fn launch<'s>(
     position: [f64; 3],
     direction: [f64; 3],
 ) -> PyResult<Photon<'s>> {
-    Photon::launch(spacetime, region, position, direction).map_err(|e| error(py, Some("position"), format!("position {position:?}: {e}")))
+    Photon::launch(spacetime, region, position, direction).map_err(|e| match e {
+        NoLaunch::OffChart => error(py, Some("position"), format!("position {position:?} {e}")),
+        NoLaunch::NotReversible => error(py, Some("spacetime"), format!("{} spacetime: {e}", spacetime.name())),
+    })
 }
 
 /// The trajectory of one photon that leaves ``position`` (world coordinates, the hole at the
@@ -169,11 +172,7 @@ pub fn geodesic<'py>(
     let settings = settings(py, spacetime, norm(&position), rtol, escape_radius, max_steps)?;
     let photon = launch(py, spacetime, region, position, direction)?;
     let (trace, points) = py.detach(|| {
-        let mut points: Vec<Recorded> = photon
-            .start()
-            .map(|state| Recorded { lambda: 0.0, state, region, position })
-            .into_iter()
-            .collect();
+        let mut points: Vec<Recorded> = photon.start().into_iter().collect();
         let trace = photon.record(&settings, |r| points.push(r));
         (trace, points)
     });
@@ -258,7 +257,11 @@ pub fn geodesics<'py>(
         return Err(error(
             py,
             Some("directions"),
-            format!("positions ({} rows) and directions ({} rows) must have one row or the same number", positions.len(), directions.len()),
+            format!(
+                "positions ({} rows) and directions ({} rows) must have one row or the same number",
+                positions.len(),
+                directions.len()
+            ),
         ));
     }
     let spacetime = &spacetime.inner;
@@ -268,7 +271,7 @@ pub fn geodesics<'py>(
     let at = |rows: &[[f64; 3]], i: usize| rows[if rows.len() == 1 { 0 } else { i }];
     for i in 0..positions.len() {
         launch(py, spacetime, region, positions[i], directions[0])
-            .map_err(|e| error(py, Some("positions"), format!("row {i}: {}", e.value(py))))?;
+            .map_err(|e| error(py, Some("positions"), format!("positions, row {i}: {}", e.value(py))))?;
     }
     let mut fates = vec![0u8; n];
     let mut ends = vec![[0.0f64; 3]; n];
@@ -288,7 +291,8 @@ pub fn geodesics<'py>(
     })?;
     let out = PyDict::new(py);
     out.set_item("fate", Array1::from(fates).into_pyarray(py))?;
-    let ends = Array2::from_shape_vec((n, 3), ends.into_iter().flatten().collect()).map_err(|e| error(py, None, e.to_string()))?;
+    let ends = Array2::from_shape_vec((n, 3), ends.into_iter().flatten().collect())
+        .map_err(|e| error(py, None, e.to_string()))?;
     out.set_item("direction", ends.into_pyarray(py))?;
     out.set_item("steps", Array1::from(steps).into_pyarray(py))?;
     Ok(out)
@@ -310,7 +314,11 @@ pub fn deflections<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
     if !(inclination.is_finite() && inclination.abs() <= 180.0) {
-        return Err(error(py, Some("inclination"), format!("inclination must be in [−180, 180] degrees, got {inclination}")));
+        return Err(error(
+            py,
+            Some("inclination"),
+            format!("inclination must be in [−180, 180] degrees, got {inclination}"),
+        ));
     }
     if !(rtol > 0.0 && rtol < 1.0) {
         return Err(error(py, Some("rtol"), format!("rtol must be in (0, 1), got {rtol}")));
@@ -322,7 +330,10 @@ pub fn deflections<'py>(
     let spacetime = &spacetime.inner;
     let (inclination_rad, stepping) = (inclination.to_radians(), Stepping::Adaptive { rtol });
     let angles = in_pool(py, threads, || {
-        impacts.par_iter().map(|&b| scatter(spacetime, b, inclination_rad, stepping).deflection_rad).collect::<Vec<f64>>()
+        impacts
+            .par_iter()
+            .map(|&b| scatter(spacetime, b, inclination_rad, stepping).deflection_rad)
+            .collect::<Vec<f64>>()
     })?;
     Ok(Array1::from(angles).into_pyarray(py))
 }

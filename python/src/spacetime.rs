@@ -57,7 +57,10 @@ impl PySpacetime {
             return Err(error(
                 py,
                 None,
-                format!("unknown spacetime \"{name}\"; expected one of {} (or Spacetime.from_dict for a written metric)", names.join(", ")),
+                format!(
+                    "unknown spacetime \"{name}\"; expected one of {} (or Spacetime.from_dict for a written metric)",
+                    names.join(", ")
+                ),
             ));
         };
         let mut given: Vec<(String, f64)> = Vec::new();
@@ -66,7 +69,11 @@ impl PySpacetime {
             let Some(p) = d.parameters.iter().find(|p| p.name == key) else {
                 let names: Vec<&str> = d.parameters.iter().map(|p| p.name).collect();
                 let has = if names.is_empty() { "none".to_string() } else { names.join(", ") };
-                return Err(error(py, Some(&key), format!("{} spacetime has no parameter \"{key}\" (it has: {has})", d.name)));
+                return Err(error(
+                    py,
+                    Some(&key),
+                    format!("{} spacetime has no parameter \"{key}\" (it has: {has})", d.name),
+                ));
             };
             let value: f64 = value
                 .extract()
@@ -91,7 +98,11 @@ impl PySpacetime {
     /// An ``axis`` key is read and checked but not applied: spins here are about z.
     #[staticmethod]
     fn from_toml(py: Python<'_>, text: &str) -> PyResult<Self> {
-        let (inner, _axis) = scene::parse_spacetime(text, "<spacetime>").map_err(|e| error(py, None, e.to_string()))?;
+        let (inner, _axis) = scene::parse_spacetime(text, "<spacetime>").map_err(|e| {
+            // The reader names the key as `spacetime.KEY`; the parameter is the key.
+            let parameter = e.field().map(|f| f.strip_prefix("spacetime.").unwrap_or(f));
+            error(py, parameter, e.to_string())
+        })?;
         Ok(PySpacetime { inner })
     }
 

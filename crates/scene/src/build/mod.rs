@@ -51,7 +51,10 @@ const TOP_LEVEL: &[&str] =
 
 /// The spacetime of the parsed document `root`, which holds a `[spacetime]` table and nothing
 /// else, read as a scene file's (flat space without one), with its symmetry axis.
-pub(crate) fn spacetime_alone<'a>(doc: &'a Doc<'a>, root: &'a Spanned<DeTable<'a>>) -> Result<(::spacetime::Spacetime, render::geometry::Vec3)> {
+pub(crate) fn spacetime_alone<'a>(
+    doc: &'a Doc<'a>,
+    root: &'a Spanned<DeTable<'a>>,
+) -> Result<(::spacetime::Spacetime, render::geometry::Vec3)> {
     let root = Table::root(doc, root, &["spacetime"])?;
     let file = match root.get("spacetime") {
         Some(n) => spacetime::section(&n, ::spacetime::metric::SPACETIMES)?,

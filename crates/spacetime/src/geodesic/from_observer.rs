@@ -167,9 +167,11 @@ impl<'s> Photon<'s> {
         Some(State { x: y, p: q })
     }
 
-    /// The photon's start in the forward chart; `None` inside a horizon.
-    pub fn start(&self) -> Option<State> {
-        self.traced_start().map(|(_, s)| forward_state(&s))
+    /// The photon's start, as [`Photon::record`] hands out its steps (at `λ = 0`); `None` where
+    /// no local observer exists.
+    pub fn start(&self) -> Option<Recorded> {
+        let (traced, start) = self.traced_start()?;
+        Some(recorded(traced.metric(), 0.0, &start))
     }
 
     /// Traces the photon to its fate with the tracer the spacetime chooses. A photon with no
@@ -196,9 +198,7 @@ impl<'s> Photon<'s> {
         let mut lambda = 0.0;
         ended(HamiltonianTracer::new(metric, start, *settings).run(|step| {
             lambda += step.h;
-            let (dx, _) = metric.geodesic_rhs(&step.end.x, &step.end.p);
-            let world = metric.to_world(&step.end.x, &dx);
-            visit(Recorded { lambda, state: forward_state(&step.end), region: world.region, position: world.position });
+            visit(recorded(metric, lambda, &step.end));
             Visit::Continue
         }))
     }
@@ -242,6 +242,13 @@ impl TracedMetric<'_> {
             TracedMetric::Twin(twin) => twin,
         }
     }
+}
+
+/// A traced state at `lambda` as handed out: in the forward chart, with its world point.
+fn recorded(metric: &dyn Metric, lambda: f64, traced: &State) -> Recorded {
+    let (dx, _) = metric.geodesic_rhs(&traced.x, &traced.p);
+    let world = metric.to_world(&traced.x, &dx);
+    Recorded { lambda, state: forward_state(traced), region: world.region, position: world.position }
 }
 
 /// `t → −t`: a traced chart's state as the forward photon's, or back (an involution).
@@ -317,8 +324,7 @@ mod tests {
 
     /// Every recorded state of `photon`, with the start.
     fn trajectory(photon: &Photon, settings: &TraceSettings) -> (PhotonTrace, Vec<Recorded>) {
-        let start = photon.start().expect("outside the horizon");
-        let mut points = vec![Recorded { lambda: 0.0, state: start, region: Region::Upper, position: [0.0; 3] }];
+        let mut points = vec![photon.start().expect("outside the horizon")];
         let trace = photon.record(settings, |r| points.push(r));
         (trace, points)
     }
