@@ -11,14 +11,15 @@
 //! time reversed, `t → −t`, is a chart of the spacetime in which the photon runs forwards along
 //! the same affine parameter: the static chart itself, or for holes the *ingoing* Kerr–Schild
 //! chart, regular on the future horizon the photon falls through. States handed out
-//! ([`Photon::forward_state`]) are in that chart: `t` and `p_t` of the traced state negated, so
-//! `E = −p_t > 0`.
+//! ([`Photon::start`], [`Photon::record`]) are in that chart: `t` and `p_t` of the traced state
+//! negated, so `E = −p_t > 0`.
 //!
 //! [`Photon::trace`] runs the tracer the spacetime chooses ([`Spacetime::choose_tracer`]: in the
 //! ray's plane for spherical metrics, started as a camera's rays are, Kerr's own stepper, 4-D
-//! Hamiltonian otherwise) to the photon's fate; [`Photon::record`] integrates Hamilton's equations in 4-D and keeps every
-//! accepted step, the trajectory with its affine parameter and covariant momenta, which the
-//! in-plane tracer (parametrised by azimuth, with neither time nor momenta) does not have.
+//! Hamiltonian otherwise) to the photon's fate; [`Photon::record`] integrates Hamilton's
+//! equations in 4-D and keeps every accepted step, the trajectory with its affine parameter and
+//! covariant momenta, which the in-plane tracer (parametrised by azimuth, with neither time nor
+//! momenta) does not have.
 
 use super::plane::{trace_plane, PlaneMetric, PlaneStart};
 use super::{angular_momentum_z, HamiltonianTracer, RayTracer, State, TraceSettings, Visit};
