@@ -62,7 +62,10 @@ fn settings(
         return Err(error(
             py,
             Some("escape_radius"),
-            format!("escape_radius must be finite and beyond every start (farthest at {farthest_start}), got {escape_radius}"),
+            format!(
+                "escape_radius must be finite and beyond every start (farthest at {farthest_start}), \
+                 got {escape_radius}"
+            ),
         ));
     }
     if max_steps == 0 {
@@ -151,7 +154,10 @@ fn launch<'s>(
 /// where it has failed. Raises ``SpacetimeError`` naming a bad argument, and for a metric written
 /// by a user, whose light cannot be followed forwards.
 #[pyfunction]
-#[pyo3(signature = (spacetime, position, direction, *, rtol = 1e-10, escape_radius = None, max_steps = 1_000_000, observer = "static", region = "upper"))]
+#[pyo3(signature = (
+    spacetime, position, direction, *,
+    rtol = 1e-10, escape_radius = None, max_steps = 1_000_000, observer = "static", region = "upper",
+))]
 #[allow(clippy::too_many_arguments)] // Python's keywords.
 pub fn geodesic<'py>(
     py: Python<'py>,
@@ -234,7 +240,10 @@ fn in_pool<T: Send>(py: Python<'_>, threads: Option<usize>, work: impl FnOnce() 
 /// ``direction`` (N, 3) the world direction of travel at the escape radius (NaN for captured
 /// and failed photons) and ``steps`` (N,). The same for any ``threads`` (default: all cores).
 #[pyfunction]
-#[pyo3(signature = (spacetime, positions, directions, *, rtol = 1e-10, escape_radius = None, max_steps = 1_000_000, observer = "static", region = "upper", threads = None))]
+#[pyo3(signature = (
+    spacetime, positions, directions, *,
+    rtol = 1e-10, escape_radius = None, max_steps = 1_000_000, observer = "static", region = "upper", threads = None,
+))]
 #[allow(clippy::too_many_arguments)] // Python's keywords.
 pub fn geodesics<'py>(
     py: Python<'py>,
