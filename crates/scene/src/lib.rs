@@ -120,6 +120,29 @@ pub fn parse_view(
     parse_with(text, origin, base_dir, &ReadPolicy::new(base_dir), view, SPACETIMES)
 }
 
+/// The spacetime of `text`, a document holding only a `[spacetime]` table, read and checked as
+/// a scene file's (the same keys, defaults and messages), with its symmetry axis in the world:
+/// for programs that want a spacetime, such as the Python package, without a scene.
+pub fn parse_spacetime(text: &str, origin: &str) -> Result<(spacetime::Spacetime, render::geometry::Vec3), SceneError> {
+    let root = parse_document(text, origin)?;
+    build::spacetime_alone(&Doc { origin, text }, &root)
+}
+
+/// `text` parsed as TOML, its nesting bounded first.
+fn parse_document<'t>(text: &'t str, origin: &str) -> Result<toml::Spanned<DeTable<'t>>, SceneError> {
+    if let Some(offset) = nesting::too_deep(text) {
+        let message = format!(
+            "invalid TOML: brackets nested more than {} levels deep (no scene needs as many)",
+            nesting::MAX_NESTING
+        );
+        return Err(SceneError::at(origin, text, offset, None, message));
+    }
+    DeTable::parse(text).map_err(|e| {
+        let offset = e.span().map_or(0, |s| s.start);
+        SceneError::at(origin, text, offset, None, format!("invalid TOML: {}", e.message().trim_end()))
+    })
+}
+
 /// As [`parse`], the `[spacetime]` type one of `metrics` instead of the built-in metrics
 /// ([`SPACETIMES`]) or a metric written in the file: how a test shows that a metric's
 /// descriptor is all the reader needs.
@@ -141,17 +164,7 @@ fn parse_with(
     view: Option<&str>,
     metrics: &[&MetricDescriptor],
 ) -> Result<render::scene::Scene, SceneError> {
-    if let Some(offset) = nesting::too_deep(text) {
-        let message = format!(
-            "invalid TOML: brackets nested more than {} levels deep (no scene needs as many)",
-            nesting::MAX_NESTING
-        );
-        return Err(SceneError::at(origin, text, offset, None, message));
-    }
-    let root = DeTable::parse(text).map_err(|e| {
-        let offset = e.span().map_or(0, |s| s.start);
-        SceneError::at(origin, text, offset, None, format!("invalid TOML: {}", e.message().trim_end()))
-    })?;
+    let root = parse_document(text, origin)?;
     let doc = Doc { origin, text };
     build::scene(&doc, &root, base_dir, policy, view, metrics)
 }

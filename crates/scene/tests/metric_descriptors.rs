@@ -107,3 +107,19 @@ fn a_registered_toy_metric_is_read_checked_and_documented() {
     assert!(table.contains("| `\"toy\"` | `size` > 0 (default 2) | size ≤ 100 | a black hole given by"), "{table}");
     assert!(table.contains("| `size` | length | horizon radius 2M | `\"toy\"` |"), "{table}");
 }
+
+/// A `[spacetime]` table alone reads as in a scene file, with the same messages, and nothing
+/// else may stand beside it.
+#[test]
+fn a_spacetime_table_alone_reads_as_in_a_scene() {
+    let text = "[spacetime]\ntype = \"kerr\"\nmass = 2\nspin = 1.5\naxis = [0, 0, 1]\n";
+    let (alone, axis) = scene::parse_spacetime(text, "t.toml").expect("valid");
+    let in_scene = scene::parse(&format!("{text}{CAMERA}"), "t.toml", Path::new(".")).expect("valid");
+    assert_eq!((alone, axis), (in_scene.spacetime, in_scene.axis));
+    let bad = "[spacetime]\ntype = \"kerr\"\nmass = 1\nspin = 1.5\n";
+    let e = scene::parse_spacetime(bad, "t.toml").expect_err("too fast");
+    let in_scene = scene::parse(&format!("{bad}{CAMERA}"), "t.toml", Path::new(".")).expect_err("too fast");
+    assert_eq!(e.to_string(), in_scene.to_string());
+    assert!(e.to_string().contains("spacetime.spin"), "{e}");
+    assert!(scene::parse_spacetime(&format!("{text}{CAMERA}"), "t.toml").is_err(), "a camera is not a spacetime");
+}

@@ -49,6 +49,20 @@ pub(crate) struct Builder<'a> {
 const TOP_LEVEL: &[&str] =
     &["spacetime", "camera", "views", "animation", "render", "sky", "lower", "materials", "objects", "accretion_disk"];
 
+/// The spacetime of the parsed document `root`, which holds a `[spacetime]` table and nothing
+/// else, read as a scene file's (flat space without one), with its symmetry axis.
+pub(crate) fn spacetime_alone<'a>(
+    doc: &'a Doc<'a>,
+    root: &'a Spanned<DeTable<'a>>,
+) -> Result<(::spacetime::Spacetime, render::geometry::Vec3)> {
+    let root = Table::root(doc, root, &["spacetime"])?;
+    let file = match root.get("spacetime") {
+        Some(n) => spacetime::section(&n, ::spacetime::metric::SPACETIMES)?,
+        None => spacetime::FileSpacetime::flat(),
+    };
+    Ok((file.spacetime, file.axis))
+}
+
 /// Builds the scene described by the parsed document `root`, whose relative paths start at
 /// `base_dir`, reading files under `policy`, its `[spacetime]` one of `metrics` (or written).
 pub(crate) fn scene<'a>(

@@ -17,6 +17,7 @@
 pub mod aim;
 pub mod bundle;
 pub mod dopri5;
+pub mod from_observer;
 mod hamiltonian;
 mod interpolant;
 pub mod plane;

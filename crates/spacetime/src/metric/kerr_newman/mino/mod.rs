@@ -64,3 +64,16 @@ mod tests;
 mod tracer;
 
 pub use tracer::{MinoStep, MinoTracer};
+
+use crate::geodesic::State;
+use crate::metric::KerrNewman;
+
+/// Carter's constant `Q` of the ray at `state` (chart position and covariant momentum) about
+/// `hole` (Carter 1968): with `E` and `L_z` the third constant of motion of Kerr's family, zero
+/// on rays in the equatorial plane. Quadratic in `p`, so a ray traced backwards has the `Q` of
+/// the photon it describes.
+pub fn carter_q(hole: &KerrNewman, state: &State) -> f64 {
+    let (c, _) = motion::from_chart(hole, state);
+    // `sphere = Q + L²`.
+    c.sphere - c.axial * c.axial
+}
