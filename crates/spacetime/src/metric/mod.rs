@@ -21,7 +21,7 @@ mod reissner_nordstrom;
 pub mod schwarzschild;
 mod spin_twin;
 pub(crate) mod user;
-mod written;
+pub(crate) mod written;
 
 pub use builtin::{Spacetime, WRITTEN_NAME};
 pub use capabilities::{Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers};
