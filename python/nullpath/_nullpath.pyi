@@ -31,7 +31,7 @@ class SceneTable:
     def __len__(self) -> int: ...
     def __iter__(self) -> Iterator[str]: ...
     def keys(self) -> List[str]:
-        """The keys written in the table, in the document's order."""
+        """The keys written in the table, sorted."""
     def items(self) -> List[Tuple[str, Any]]:
         """The ``(key, value)`` pairs written in the table."""
     def get(self, key: str, default: Any = None) -> Any:

@@ -211,9 +211,13 @@ impl<'py> Reporter<'py> {
                         bar.insert(tqdm.call((), Some(&kwargs))?)
                     }
                 };
-                bar.setattr("total", total)?;
-                bar.setattr("n", done)?;
-                bar.call_method0("refresh")?;
+                if bar.getattr("total")?.extract::<u64>()? != total {
+                    // A noise target's passes each have their own total.
+                    bar.setattr("total", total)?;
+                }
+                // Told as an update, so that tqdm's rate is that of the samples taken.
+                let shown: u64 = bar.getattr("n")?.extract()?;
+                bar.call_method1("update", (done.saturating_sub(shown),))?;
             }
         }
         Ok(())

@@ -326,7 +326,7 @@ impl SceneTable {
         PyList::new(py, self.keys(py)?)?.try_iter().map(Bound::into_any)
     }
 
-    /// The keys written in the table, in the document's order.
+    /// The keys written in the table, sorted.
     fn keys(&self, py: Python<'_>) -> PyResult<Vec<String>> {
         Ok(self.read(py)?.keys().cloned().collect())
     }
