@@ -5,12 +5,36 @@ Spacetimes are the program's built-in metrics (or metrics written as expressions
 traced through them one at a time with their trajectories, or in bulk.
 """
 
-from ._nullpath import __version__
+from ._nullpath import (
+    FATES,
+    RenderResult,
+    Scene,
+    SceneError,
+    SceneTable,
+    Spacetime,
+    SpacetimeError,
+    __version__,
+    deflections,
+    geodesic,
+    geodesics,
+    read_exr,
+    spacetimes,
+)
 
-__all__ = ["__version__"]
-
-# --- spacetimes and geodesics (pygeo) ---
-from ._nullpath import FATES, Spacetime, SpacetimeError, deflections, geodesic, geodesics, spacetimes
-
-__all__ += ["FATES", "Spacetime", "SpacetimeError", "deflections", "geodesic", "geodesics", "spacetimes"]
-# --- end spacetimes and geodesics ---
+__all__ = [
+    "__version__",
+    # Scenes and their renders.
+    "RenderResult",
+    "Scene",
+    "SceneError",
+    "SceneTable",
+    "read_exr",
+    # Spacetimes and photons.
+    "FATES",
+    "Spacetime",
+    "SpacetimeError",
+    "deflections",
+    "geodesic",
+    "geodesics",
+    "spacetimes",
+]

@@ -106,7 +106,7 @@ pub fn metadata(scene: &Scene, source: &Source, goal: Goal, part: Part, stats: &
     put("part", part.to_string());
     put("tonemap.exposure_ev", scene.settings.tonemap.exposure_ev.to_string());
     put("tonemap.curve", scene.settings.tonemap.curve.name().to_owned());
-    put("stats", super::render::stats_json(stats, scene).to_string());
+    put("stats", stats.to_json(&scene.settings).to_string());
     m
 }
 

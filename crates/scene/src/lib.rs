@@ -36,6 +36,7 @@
 //! tree, or a folder that [`load_allowing`] is given; regular files only, of bounded size.
 
 mod build;
+pub mod edit;
 mod error;
 pub mod files;
 mod nesting;
@@ -72,35 +73,49 @@ pub fn load_allowing(
     view: Option<&str>,
     allow_read: &[PathBuf],
 ) -> Result<render::scene::Scene, SceneError> {
+    let text = read_text(path)?;
+    parse_allowing(&text, &path.display().to_string(), folder_of(path), view, allow_read)
+}
+
+/// The text of the scene file at `path`, or why it cannot be read (not there, not UTF-8: the
+/// error names the first invalid byte's line and column).
+pub fn read_text(path: &Path) -> Result<String, SceneError> {
     let origin = path.display().to_string();
     let bytes =
         std::fs::read(path).map_err(|e| SceneError::file(&origin, format!("cannot read: {}", io_message(&e))))?;
-    let text = match String::from_utf8(bytes) {
-        Ok(text) => text,
-        Err(e) => {
-            let valid = e.utf8_error().valid_up_to();
-            let bytes = e.into_bytes();
-            let prefix = String::from_utf8_lossy(&bytes[..valid]);
-            return Err(SceneError::at(
-                &origin,
-                &prefix,
-                valid,
-                None,
-                "not valid UTF-8 text (TOML files must be UTF-8)",
-            ));
-        }
-    };
-    let base_dir = match path.parent() {
+    String::from_utf8(bytes).map_err(|e| {
+        let valid = e.utf8_error().valid_up_to();
+        let bytes = e.into_bytes();
+        let prefix = String::from_utf8_lossy(&bytes[..valid]);
+        SceneError::at(&origin, &prefix, valid, None, "not valid UTF-8 text (TOML files must be UTF-8)")
+    })
+}
+
+/// The folder the files named by the scene file at `path` are resolved against, and read
+/// inside of: the one that holds it.
+pub fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => dir,
         _ => Path::new("."),
-    };
+    }
+}
+
+/// As [`parse_view`], letting the scene read files inside the folders `allow_read` (and below
+/// them) too, besides `base_dir`'s tree: what [`load_allowing`] does with a file's text.
+pub fn parse_allowing(
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+    view: Option<&str>,
+    allow_read: &[PathBuf],
+) -> Result<render::scene::Scene, SceneError> {
     let mut policy = ReadPolicy::new(base_dir);
     for dir in allow_read {
         policy = policy
             .allow(dir)
-            .map_err(|e| SceneError::file(&origin, format!("cannot allow reading '{}': {e}", dir.display())))?;
+            .map_err(|e| SceneError::file(origin, format!("cannot allow reading '{}': {e}", dir.display())))?;
     }
-    parse_with(&text, &origin, base_dir, &policy, view, SPACETIMES)
+    parse_with(text, origin, base_dir, &policy, view, SPACETIMES)
 }
 
 /// Builds the scene described by `text`. `origin` names it in error messages (a path, or e.g.

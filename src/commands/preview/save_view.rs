@@ -2,7 +2,7 @@
 //! the sliders' spacetime parameters as `[views.NAME.spacetime]` where they differ from the
 //! file's (docs/scene-format.md), so that `nullpath render --view NAME` renders what the page
 //! shows. The edit goes through
-//! `toml_edit`, which keeps the rest of the file — comments, order, spacing — as the user wrote
+//! `scene::edit` (`toml_edit`), which keeps the rest of the file — comments, order, spacing — as the user wrote
 //! it; the file is written only if the edited text still loads, from the new view, and it is
 //! replaced atomically: a reader (the file watcher, an editor) sees the old file or the new one,
 //! never half of one, and a failed write (a full disk) leaves the old one as it was.
@@ -10,10 +10,10 @@
 use super::view::Eye;
 use render::camera::Projection;
 use render::scene::Scene;
+use scene::edit::{value, Array, Item, Table};
 use spacetime::Spacetime;
 use std::io::Write as _;
 use std::path::Path;
-use toml_edit::{value, Array, DocumentMut, Item, Table};
 
 /// Longest view name.
 const MAX_NAME: usize = 64;
@@ -50,13 +50,6 @@ fn vector(v: [f64; 3]) -> Item {
 /// view of that name is replaced.
 pub fn with_view(text: &str, name: &str, eye: &Eye, scene: &Scene, file: &Spacetime) -> Result<String, String> {
     check_name(name)?;
-    let mut doc: DocumentMut = text.parse().map_err(|e| format!("the scene file is not valid TOML: {e}"))?;
-    let views = doc.entry("views").or_insert_with(|| {
-        let mut t = Table::new();
-        t.set_implicit(true);
-        Item::Table(t)
-    });
-    let views = views.as_table_mut().ok_or("the scene's `views` is not a table")?;
     let mut view = Table::new();
     view.insert("position", vector(eye.position));
     view.insert("look_at", vector(eye.look_at));
@@ -90,8 +83,7 @@ pub fn with_view(text: &str, name: &str, eye: &Eye, scene: &Scene, file: &Spacet
         }
         view.insert("spacetime", Item::Table(parameters));
     }
-    views.insert(name, Item::Table(view));
-    Ok(doc.to_string())
+    scene::edit::with_fields(text, &["views"], vec![(name.to_owned(), Some(Item::Table(view)))])
 }
 
 /// Why a view was not saved.

@@ -13,7 +13,7 @@ use render::film::{
 };
 use render::integrator::PathStats;
 use render::renderer::{
-    progressive, render, Checkpointed, Goal, NoiseTarget, Outcome, Part, Progressive, RenderStats, Resume, Unit,
+    progressive, render, Checkpointed, Goal, NoiseTarget, Part, Progressive, RenderStats, Resume, Unit,
 };
 use render::scene::Scene;
 use render::settings::IntegratorKind;
@@ -309,33 +309,6 @@ fn available_memory() -> Option<u64> {
     Some(kib * 1024)
 }
 
-/// Statistics as the JSON object `--stats` writes.
-pub fn stats_json(stats: &RenderStats, scene: &Scene) -> serde_json::Value {
-    let f = &stats.paths.fates;
-    serde_json::json!({
-        "rays": stats.paths.rays,
-        "samples": stats.samples,
-        "seconds": stats.seconds,
-        "nan_samples": stats.nan_samples,
-        "fates": {
-            "escaped": f.escaped, "captured": f.captured, "absorbed": f.absorbed,
-            "traversed": f.traversed, "failed": f.failed,
-        },
-        "width": scene.settings.width,
-        "height": scene.settings.height,
-        "spp": scene.settings.spp,
-        "spp_min": stats.spp_min,
-        "spp_max": stats.spp_max,
-        "relative_error": stats.relative_error,
-        "outcome": match stats.outcome {
-            Outcome::Finished => "finished",
-            Outcome::Converged => "converged",
-            Outcome::Interrupted => "interrupted",
-        },
-        "complete": stats.is_complete(),
-    })
-}
-
 /// One line on a finished render: size, samples, time, ray fates.
 pub fn summary(stats: &RenderStats, scene: &Scene) -> String {
     let f = &stats.paths.fates;
@@ -387,7 +360,7 @@ fn check_stats_path(path: &Path) -> Result<(), String> {
 }
 
 fn write_stats(path: &Path, stats: &RenderStats, scene: &Scene) -> Result<(), String> {
-    write_json(path, &stats_json(stats, scene))
+    write_json(path, &stats.to_json(&scene.settings))
 }
 
 /// Writes the statistics `value` to `path` as pretty JSON, atomically: a reader (or a process
@@ -550,8 +523,7 @@ impl Command<'_> {
             return interrupted(args, self.scene, &stats, (reason, render.unit()), saved);
         }
         if args.part.is_none() {
-            let data = (self.scene.settings.has_data_channels())
-                .then(|| render::renderer::data_layer(self.scene, &render::renderer::propagator(self.scene)));
+            let data = render::renderer::requested_data(self.scene);
             let (film, tonemap) = (render.film(), &self.scene.settings.tonemap);
             write_image_with_data(&film, data.as_ref(), &args.output, tonemap, &metadata(&stats))
                 .map_err(|e| e.to_string())?;

@@ -115,6 +115,15 @@ impl DataLayer {
         counts
     }
 
+    /// Every channel by its name, the data channels and then the spectral ones (see
+    /// [`SpectrumChannels::name`]), each row-major: what an EXR image holds beside the colour.
+    pub fn named_channels(&self) -> impl Iterator<Item = (String, Vec<f32>)> + '_ {
+        let data = self.channels.iter().map(|&channel| (channel.name().to_owned(), self.samples(channel)));
+        let spectra = (self.wavelengths.iter().enumerate())
+            .map(|(k, &lambda)| (SpectrumChannels::name(lambda), self.spectral_samples(k)));
+        data.chain(spectra)
+    }
+
     /// Every pixel's spectral radiance at the `k`-th wavelength.
     pub fn spectral_samples(&self, k: usize) -> Vec<f32> {
         self.spectra.iter().skip(k).step_by(self.wavelengths.len().max(1)).copied().collect()

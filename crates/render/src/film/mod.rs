@@ -62,8 +62,8 @@ pub use filter::{
     TentFilter, FILTERS, MAX_FILTER_RADIUS, MITCHELL_RECOMMENDED_B_C,
 };
 pub use output::{
-    check_output_path, check_writable, read_metadata, write_data_image, write_file_atomically, write_image,
-    write_image_with_data, ImageFormat, ImageWriteError, Metadata, MetadataReadError, METADATA_PREFIX,
+    check_output_path, check_writable, linear_pixels, read_metadata, write_data_image, write_file_atomically,
+    write_image, write_image_with_data, ImageFormat, ImageWriteError, Metadata, MetadataReadError, METADATA_PREFIX,
 };
 pub use tile::{FilmTile, TileBounds};
 pub use tonemap::{srgb_oetf, to_rgb8, Curve, ToneMap};

@@ -229,15 +229,7 @@ fn write_file(
 /// `layer`'s data channels and then its spectral channels, as EXR channels.
 fn data_channels(layer: &DataLayer) -> impl Iterator<Item = exr::prelude::AnyChannel<exr::prelude::FlatSamples>> + '_ {
     use exr::prelude::{AnyChannel, FlatSamples};
-    let data =
-        layer.channels.iter().map(|&channel| AnyChannel::new(channel.name(), FlatSamples::F32(layer.samples(channel))));
-    let spectra = layer.wavelengths.iter().enumerate().map(|(k, &lambda)| {
-        AnyChannel::new(
-            super::data::SpectrumChannels::name(lambda).as_str(),
-            FlatSamples::F32(layer.spectral_samples(k)),
-        )
-    });
-    data.chain(spectra)
+    layer.named_channels().map(|(name, samples)| AnyChannel::new(name.as_str(), FlatSamples::F32(samples)))
 }
 
 /// Encodes `channels` of an image of `size` pixels, with `metadata`, as a lossless OpenEXR file.
@@ -345,6 +337,15 @@ fn remove_stale_temporaries(path: &Path) {
     }
 }
 
+/// The film's colour as the linear formats hold it (OpenEXR bit for bit): row by row, each
+/// pixel's mean radiance scaled by `tonemap`'s exposure (its curve is for 8-bit output only),
+/// rounded to `f32`. What `nullpath render -o x.exr` writes and what the Python module returns
+/// are both this, so that the two agree to the bit.
+pub fn linear_pixels(film: &Film, tonemap: &ToneMap) -> Vec<[f32; 3]> {
+    let scale = tonemap.exposure_scale();
+    film.bounds().pixels().map(|(x, y)| film.pixel_f64(x, y).map(|c| (c * scale) as f32)).collect()
+}
+
 fn write_to(
     (film, data): (&Film, Option<&DataLayer>),
     path: &Path,
@@ -353,7 +354,6 @@ fn write_to(
     metadata: &Metadata,
 ) -> Result<(), ImageWriteError> {
     let (width, height) = (film.width(), film.height());
-    let scale = tonemap.exposure_scale();
     write_file(path, format, |writer| {
         match format {
             ImageFormat::Png => {
@@ -368,9 +368,8 @@ fn write_to(
             }
             ImageFormat::Exr if data.is_some() => {
                 use exr::prelude::{AnyChannel, FlatSamples};
-                let colour: [Vec<f32>; 3] = std::array::from_fn(|c| {
-                    film.bounds().pixels().map(|(x, y)| (film.pixel_f64(x, y)[c] * scale) as f32).collect()
-                });
+                let pixels = linear_pixels(film, tonemap);
+                let colour: [Vec<f32>; 3] = std::array::from_fn(|c| pixels.iter().map(|p| p[c]).collect());
                 let [r, g, b] = colour.map(FlatSamples::F32);
                 let mut channels = vec![AnyChannel::new("R", r), AnyChannel::new("G", g), AnyChannel::new("B", b)];
                 channels.extend(data.into_iter().flat_map(data_channels));
@@ -378,9 +377,9 @@ fn write_to(
             }
             ImageFormat::Exr => {
                 use exr::prelude::{Encoding, Image, SpecificChannels, Vec2, WritableImage as _};
+                let pixels = linear_pixels(film, tonemap);
                 let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
-                    // x < width and y < height, both u32, so the casts are lossless.
-                    let [r, g, b] = film.pixel_f64(x as u32, y as u32).map(|c| (c * scale) as f32);
+                    let [r, g, b] = pixels[y * width as usize + x];
                     (r, g, b)
                 });
                 let size = (width as usize, height as usize);
@@ -389,11 +388,8 @@ fn write_to(
                 image.write().to_buffered(writer)?;
             }
             ImageFormat::Hdr => {
-                let pixels: Vec<image::Rgb<f32>> = film
-                    .bounds()
-                    .pixels()
-                    .map(|(x, y)| image::Rgb(film.pixel_f64(x, y).map(|c| (c * scale).max(0.0) as f32)))
-                    .collect();
+                let pixels: Vec<image::Rgb<f32>> =
+                    linear_pixels(film, tonemap).into_iter().map(|p| image::Rgb(p.map(|c| c.max(0.0)))).collect();
                 HdrEncoder::new(writer).encode(&pixels, width as usize, height as usize)?;
             }
         }

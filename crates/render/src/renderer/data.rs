@@ -8,6 +8,13 @@ use crate::scene::Scene;
 use crate::spectrum::{Colour, SampledSpectrum, SampledWavelengths, N_WAVELENGTHS};
 use rayon::prelude::*;
 
+/// The data channels `scene`'s settings ask for (`[render] channels` and `spectrum`), with the
+/// scene's own propagator; `None` when it asks for none. What a whole render writes beside the
+/// colour.
+pub fn requested_data(scene: &Scene) -> Option<DataLayer> {
+    scene.settings.has_data_channels().then(|| data_layer(scene, &super::propagator(scene)))
+}
+
 /// The data and spectral channels `scene`'s settings ask for, with its propagator.
 pub fn data_layer(scene: &Scene, propagator: &Propagator) -> DataLayer {
     let settings = &scene.settings;

@@ -19,9 +19,10 @@
 mod adaptive;
 mod data;
 mod path;
+mod report;
 mod sppm;
 
-pub use data::data_layer;
+pub use data::{data_layer, requested_data};
 
 use crate::film::{read_checkpoint, CheckpointError, Film, FilmTooLarge, ImageWriteError, Metadata, TileBounds};
 use crate::integrator::photon::{self, SppmState};
