@@ -18,6 +18,7 @@ pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod material;
+pub mod medium;
 pub mod propagator;
 pub mod renderer;
 pub mod rgb;

@@ -21,6 +21,7 @@ pub(crate) mod gltf_import;
 pub mod image;
 pub mod obj;
 pub mod policy;
+pub mod volume;
 
 pub use self::image::{load_image, load_image_path, ImageLoadError, ImageLoadErrorKind};
 pub use obj::{load_obj, MeshError};
