@@ -7,7 +7,8 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use spacetime::metric::{find, MetricDescriptor, ParameterDescriptor, ParameterError, SPACETIMES};
+use pythonize::depythonize;
+use spacetime::metric::{find, MetricDescriptor, NamedValuesError, ParameterDescriptor, ParameterError, SPACETIMES};
 use spacetime::Spacetime;
 
 create_exception!(
@@ -66,29 +67,21 @@ impl PySpacetime {
         let mut given: Vec<(String, f64)> = Vec::new();
         for (key, value) in parameters.into_iter().flat_map(|p| p.iter()) {
             let key: String = key.extract()?;
-            let Some(p) = d.parameters.iter().find(|p| p.name == key) else {
-                let names: Vec<&str> = d.parameters.iter().map(|p| p.name).collect();
-                let has = if names.is_empty() { "none".to_string() } else { names.join(", ") };
-                return Err(error(
-                    py,
-                    Some(&key),
-                    format!("{} spacetime has no parameter \"{key}\" (it has: {has})", d.name),
-                ));
-            };
             let value: f64 = value
                 .extract()
-                .map_err(|_| error(py, Some(p.name), format!("{} spacetime: {}: must be a number", d.name, p.name)))?;
+                .map_err(|_| error(py, Some(&key), format!("{} spacetime: {key}: must be a number", d.name)))?;
             given.push((key, value));
         }
-        let mut values = Vec::with_capacity(d.parameters.len());
-        for p in d.parameters {
-            let value = given.iter().find(|(k, _)| k == p.name).map(|&(_, v)| v);
-            match value.or(p.command_line_default).or(p.default) {
-                Some(v) => values.push(v),
-                None => return Err(error(py, Some(p.name), format!("{} spacetime: {} is required", d.name, p.name))),
+        let given: Vec<(&str, f64)> = given.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        let inner = d.build_named(&given, |p| p.command_line_default.or(p.default)).map_err(|e| match e {
+            NamedValuesError::Unknown(key) => {
+                let names: Vec<&str> = d.parameters.iter().map(|p| p.name).collect();
+                let has = if names.is_empty() { "none".to_string() } else { names.join(", ") };
+                error(py, Some(&key), format!("{} spacetime has no parameter \"{key}\" (it has: {has})", d.name))
             }
-        }
-        let inner = (d.build)(&values).map_err(|e| parameter_error(py, d, &e))?;
+            NamedValuesError::Missing(p) => error(py, Some(p), format!("{} spacetime: {p} is required", d.name)),
+            NamedValuesError::Invalid(e) => parameter_error(py, d, &e),
+        })?;
         Ok(PySpacetime { inner })
     }
 
@@ -110,8 +103,10 @@ impl PySpacetime {
     /// read as ``from_toml`` reads it.
     #[staticmethod]
     fn from_dict(py: Python<'_>, table: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let table: toml::Table = depythonize(table.as_any())
+            .map_err(|e| error(py, None, format!("the [spacetime] table cannot be written in TOML: {e}")))?;
         let mut root = toml::Table::new();
-        root.insert("spacetime".to_string(), toml::Value::Table(toml_table(py, table)?));
+        root.insert("spacetime".to_string(), toml::Value::Table(table));
         Self::from_toml(py, &root.to_string())
     }
 
@@ -141,37 +136,6 @@ impl PySpacetime {
         let parameters: Vec<String> =
             self.inner.parameters().iter().map(|p| format!(", {}={}", p.name, p.value)).collect();
         format!("Spacetime(\"{}\"{})", self.inner.name(), parameters.concat())
-    }
-}
-
-/// A Python dict as a TOML table: strings, numbers, booleans, lists and nested dicts.
-fn toml_table(py: Python<'_>, dict: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
-    let mut table = toml::Table::new();
-    for (key, value) in dict.iter() {
-        let key: String = key.extract().map_err(|_| error(py, None, "keys of a [spacetime] table must be strings"))?;
-        let value = toml_value(py, &key, &value)?;
-        table.insert(key, value);
-    }
-    Ok(table)
-}
-
-fn toml_value(py: Python<'_>, key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
-    // bool before int: Python's bool is an int.
-    if let Ok(b) = value.extract::<bool>() {
-        Ok(toml::Value::Boolean(b))
-    } else if let Ok(i) = value.extract::<i64>() {
-        Ok(toml::Value::Integer(i))
-    } else if let Ok(x) = value.extract::<f64>() {
-        Ok(toml::Value::Float(x))
-    } else if let Ok(s) = value.extract::<String>() {
-        Ok(toml::Value::String(s))
-    } else if let Ok(d) = value.cast::<PyDict>() {
-        Ok(toml::Value::Table(toml_table(py, d)?))
-    } else if let Ok(items) = value.try_iter() {
-        let items = items.map(|item| toml_value(py, key, &item?)).collect::<PyResult<Vec<_>>>()?;
-        Ok(toml::Value::Array(items))
-    } else {
-        Err(error(py, Some(key), format!("{key}: a [spacetime] value must be a string, number, boolean, list or dict")))
     }
 }
 

@@ -2,7 +2,7 @@
 
 use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::{Arg, ArgMatches, FromArgMatches, Parser, ValueEnum};
-use spacetime::metric::{find, parameters_of, MetricDescriptor, ParameterDescriptor, SPACETIMES};
+use spacetime::metric::{find, parameters_of, MetricDescriptor, NamedValuesError, ParameterDescriptor, SPACETIMES};
 use spacetime::scattering::{scatter, Scattering};
 use spacetime::{Fate, Spacetime, Stepping};
 
@@ -125,24 +125,15 @@ fn spacetime(args: &Args) -> Result<Spacetime, String> {
         let names: Vec<&str> = SPACETIMES.iter().map(|d| d.name).collect();
         return Err(format!("unknown spacetime \"{}\"; expected one of {}", args.spacetime, names.join(", ")));
     };
-    let flags: Vec<String> = d.parameters.iter().map(|p| format!("--{}", flag(p.name))).collect();
-    for &(name, _) in &args.parameters.0 {
-        if !d.parameters.iter().any(|p| p.name == name) {
+    d.build_named(&args.parameters.0, |p| p.command_line_default.or(p.default)).map_err(|e| match e {
+        NamedValuesError::Unknown(name) => {
+            let flags: Vec<String> = d.parameters.iter().map(|p| format!("--{}", flag(p.name))).collect();
             let has = if flags.is_empty() { "none".to_string() } else { flags.join(", ") };
-            return Err(format!("{} spacetime: --{} is not one of its parameters (it has: {has})", d.name, flag(name)));
+            format!("{} spacetime: --{} is not one of its parameters (it has: {has})", d.name, flag(&name))
         }
-    }
-    let mut values = Vec::with_capacity(d.parameters.len());
-    for p in d.parameters {
-        let given = args.parameters.0.iter().find(|(name, _)| *name == p.name).map(|&(_, v)| v);
-        match given.or(p.command_line_default).or(p.default) {
-            Some(v) => values.push(v),
-            None => return Err(format!("{} spacetime: --{} is required", d.name, flag(p.name))),
-        }
-    }
-    (d.build)(&values).map_err(|e| match e.parameter {
-        "" => format!("{} spacetime: {}", d.name, e.message),
-        p => format!("{} spacetime: --{}: {}", d.name, flag(p), e.message),
+        NamedValuesError::Missing(p) => format!("{} spacetime: --{} is required", d.name, flag(p)),
+        NamedValuesError::Invalid(e) if e.parameter.is_empty() => format!("{} spacetime: {}", d.name, e.message),
+        NamedValuesError::Invalid(e) => format!("{} spacetime: --{}: {}", d.name, flag(e.parameter), e.message),
     })
 }
 

@@ -163,6 +163,42 @@ impl MetricDescriptor {
     }
 }
 
+/// Why named values do not make a spacetime ([`MetricDescriptor::build_named`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum NamedValuesError {
+    /// A name that is not one of the metric's parameters.
+    Unknown(String),
+    /// A parameter neither given nor defaulted.
+    Missing(&'static str),
+    /// Values the metric's constructor refuses.
+    Invalid(ParameterError),
+}
+
+impl MetricDescriptor {
+    /// The spacetime of `given` (parameter name, value) pairs: each parameter its given value,
+    /// else `default(parameter)` (a user interface's default: a scene file's, or the command
+    /// line's), checked by [`Self::build`]. A name the metric does not have is an error, not
+    /// ignored, since it is a mistake of the user's (a misspelt or foreign parameter).
+    pub fn build_named(
+        &self,
+        given: &[(&str, f64)],
+        default: impl Fn(&ParameterDescriptor) -> Option<f64>,
+    ) -> Result<Spacetime, NamedValuesError> {
+        if let Some((name, _)) = given.iter().find(|(name, _)| !self.parameters.iter().any(|p| p.name == *name)) {
+            return Err(NamedValuesError::Unknown((*name).to_string()));
+        }
+        let values = self
+            .parameters
+            .iter()
+            .map(|p| {
+                let value = given.iter().find(|(name, _)| *name == p.name).map(|&(_, v)| v);
+                value.or_else(|| default(p)).ok_or(NamedValuesError::Missing(p.name))
+            })
+            .collect::<Result<Vec<f64>, _>>()?;
+        (self.build)(&values).map_err(NamedValuesError::Invalid)
+    }
+}
+
 /// The values of `known` with those named in `values` replaced, each checked against its range.
 pub(super) fn chosen_values(
     spacetime: &str,

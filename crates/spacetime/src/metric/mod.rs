@@ -26,7 +26,7 @@ pub(crate) mod written;
 pub use builtin::{Spacetime, WRITTEN_NAME};
 pub use capabilities::{Capabilities, Forwards, LocalFrame, NoRest, OwnStepper, Tracers};
 pub use descriptor::{
-    at_most_mass, exactly, non_negative, num, parameters_of, positive, MetricDescriptor, Parameter,
+    at_most_mass, exactly, non_negative, num, parameters_of, positive, MetricDescriptor, NamedValuesError, Parameter,
     ParameterDescriptor, ParameterError, Range, CHARGE, MASS, SPIN, THROAT,
 };
 pub use ellis::{Ellis, ELLIS};
