@@ -1,5 +1,5 @@
 //! The files a scene names, read in one place: Wavefront OBJ meshes, images (textures and
-//! environment maps) and glTF files with the buffers and images they name.
+//! environment maps), glTF files with the buffers and images they name, and volume grids.
 //!
 //! Every one of them is read under a [`ReadPolicy`] (see [`policy`]), because whoever wrote the
 //! scene may not be whoever renders it, and each reader turns what it read into the renderer's
@@ -16,6 +16,7 @@
 //! | [`obj`]                | Wavefront OBJ meshes, into triangles with their placement baked in         |
 //! | [`image`]              | PNG, JPEG, OpenEXR and Radiance HDR images, into linear RGB                |
 //! | `gltf_import`          | glTF 2.0 files with their buffers and images: meshes, materials, lights…   |
+//! | [`volume`]             | density and temperature grids of media: NumPy `.npy` and raw `f32` volumes |
 
 pub(crate) mod gltf_import;
 pub mod image;
