@@ -1,9 +1,10 @@
 //! Single-core cost of tracing rays of the standard fan (512², 40°, r = 30 M, Schwarzschild,
-//! adaptive rtol 1e-8): a row of the fan through the hole's image, in-plane and in 4-D.
+//! adaptive rtol 1e-8): a row of the fan through the hole's image, in-plane and in 4-D; and the
+//! same row about a Kerr hole (a = 0.9 M) in Mino time.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use spacetime::fan::{trace_hamiltonian, trace_in_plane, Fan};
-use spacetime::{Schwarzschild, Stepping, TraceSettings};
+use spacetime::fan::{trace_hamiltonian, trace_in_plane, trace_own, Fan};
+use spacetime::{Kerr, Schwarzschild, Stepping, TraceSettings};
 use std::hint::black_box;
 
 fn fan_row(c: &mut Criterion) {
@@ -19,6 +20,11 @@ fn fan_row(c: &mut Criterion) {
     });
     group.bench_function("hamiltonian_4d", |b| {
         b.iter(|| row.iter().map(|&i| trace_hamiltonian(&hole, &fan, black_box(i), &settings).steps).sum::<u32>())
+    });
+    // Kerr (a = 0.9 M) in Mino time, the stepper its renders take.
+    let kerr = Kerr::new(1.0, 0.9);
+    group.bench_function("kerr_mino", |b| {
+        b.iter(|| row.iter().map(|&i| trace_own(&kerr, &fan, black_box(i), &settings).steps).sum::<u32>())
     });
     group.finish();
 }
