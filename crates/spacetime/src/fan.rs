@@ -4,7 +4,7 @@
 //! crate's benchmarks turn on. It lives here, not beside `nullpath bench`, because both of them
 //! time it and benchmarks cannot reach into a binary.
 
-use crate::geodesic::plane::{trace_plane, PlaneStart};
+use crate::geodesic::plane::{trace_plane, trace_plane_in_time, PlaneStart};
 use crate::geodesic::{HamiltonianTracer, RayTracer, State, TraceSettings, Visit};
 use crate::metric::{Metric, OwnStepper, Region, Schwarzschild};
 use crate::{Fate, Tetrad};
@@ -64,6 +64,18 @@ pub fn trace_in_plane(metric: &Schwarzschild, fan: &Fan, index: u64, settings: &
     }
 }
 
+/// [`trace_in_plane`] carrying the chart's time from 0 at the camera (what a moving scene costs).
+pub fn trace_in_plane_in_time(metric: &Schwarzschild, fan: &Fan, index: u64, settings: &TraceSettings) -> FanRay {
+    let dir = fan.direction(index);
+    match PlaneStart::from_observer(metric, Region::Upper, fan.camera_position(), dir) {
+        Some(start) => {
+            let t = trace_plane_in_time(metric, start, 0.0, settings, |_| Visit::Continue);
+            FanRay { fate: t.fate, steps: t.steps }
+        }
+        None => FanRay { fate: Fate::Captured, steps: 0 },
+    }
+}
+
 /// Traces fan ray `index` with the general 4-D Hamiltonian tracer.
 pub fn trace_hamiltonian<M: Metric>(metric: &M, fan: &Fan, index: u64, settings: &TraceSettings) -> FanRay {
     match camera_ray(metric, fan, index) {
@@ -76,6 +88,14 @@ pub fn trace_hamiltonian<M: Metric>(metric: &M, fan: &Fan, index: u64, settings:
 pub fn trace_own<M: OwnStepper>(metric: &M, fan: &Fan, index: u64, settings: &TraceSettings) -> FanRay {
     match camera_ray(metric, fan, index) {
         Some(start) => run(metric.ray_tracer(start, *settings)),
+        None => FanRay { fate: Fate::Captured, steps: 0 },
+    }
+}
+
+/// [`trace_own`] carrying the chart's time from 0 at the camera (what a moving scene costs).
+pub fn trace_own_in_time<M: OwnStepper>(metric: &M, fan: &Fan, index: u64, settings: &TraceSettings) -> FanRay {
+    match camera_ray(metric, fan, index) {
+        Some(start) => run(metric.ray_tracer(start, *settings).carrying_time()),
         None => FanRay { fate: Fate::Captured, steps: 0 },
     }
 }

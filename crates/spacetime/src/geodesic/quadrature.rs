@@ -35,9 +35,9 @@ const KRONROD: [f64; 8] = [
 const GAUSS: [f64; 4] =
     [0.129_484_966_168_869_7, 0.279_705_391_489_276_7, 0.381_830_050_505_118_9, 0.417_959_183_673_469_4];
 
-/// Halvings of the step before an interval is accepted whatever its error: 2⁻⁴⁰ of a step is
+/// Halvings of the step before an interval is accepted whatever its error: 2⁻³⁰ of a step is
 /// far below any scale a ray has.
-const MAX_DEPTH: u32 = 40;
+const MAX_DEPTH: u32 = 30;
 
 /// `∫ₐᵇ f` to the tolerance `rtol` of `∫ₐᵇ |f|` (as the first 15-point estimate gives it) or
 /// `atol`, whichever is larger.

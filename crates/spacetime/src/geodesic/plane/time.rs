@@ -106,8 +106,11 @@ pub(super) fn curved_fall<M: PlaneMetric + ?Sized>(
         let flat_rate = b * (metric.slope_squared(u, inv_b2) + u * u - u * metric.binet_source(u, inv_b2)) / (u * u);
         fall_per_azimuth(metric, u, du, b) - flat_rate
     };
-    let h = attempt.h();
-    flat(0.0) - flat(theta) + h * integrate(&rest, 0.0, theta, RTOL, 0.0)
+    let (h, flat0, flat1) = (attempt.h(), flat(0.0), flat(theta));
+    // The difference of the rates loses the digits of their size, the time's: no interval need
+    // be resolved below them.
+    let atol = RTOL * (flat0.abs() + flat1.abs()) / h;
+    flat0 - flat1 + h * integrate(&rest, 0.0, theta, RTOL, atol)
 }
 
 /// The time that falls over the distance `s` of a straight piece from world radius `rho` (in

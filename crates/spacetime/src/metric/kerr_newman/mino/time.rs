@@ -43,5 +43,9 @@ pub(super) fn elapsed(constants: &Constants, dense: &Dense, theta: f64) -> f64 {
         let dw = constants.rhs(&y)[1];
         constants.time_rate(u, w, n0 * n0 + n1 * n1) + far * (dw * u - w * w) / (u * u)
     };
-    flat(theta) - flat(0.0) + dense.h() * integrate(&rest, 0.0, theta, RTOL, 0.0)
+    let (h, flat0, flat1) = (dense.h(), flat(0.0), flat(theta));
+    // The difference of the rates loses the digits of their size, the time's: no interval need
+    // be resolved below them.
+    let atol = RTOL * (flat0.abs() + flat1.abs()) / h;
+    flat1 - flat0 + h * integrate(&rest, 0.0, theta, RTOL, atol)
 }
