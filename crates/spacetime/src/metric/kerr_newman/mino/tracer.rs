@@ -154,11 +154,12 @@ impl MinoTracer {
         }
         self.y = y1;
         self.steps += 1;
-        let step = MinoStep { constants, time: self.time, timed: self.timed, dense };
-        if let Some(end) = step.time_at(1.0) {
-            self.time = end;
+        let time = self.time;
+        if self.timed {
+            self.time += elapsed(&constants, &dense, 1.0);
         }
-        Ok(step)
+        // Built in place: a step (its series) is too large to move for nothing.
+        Ok(MinoStep { constants, time, timed: self.timed, dense })
     }
 
     /// The cap `cap` of a Taylor step, lengthened for an outgoing ray (`u' < 0`) inside the
