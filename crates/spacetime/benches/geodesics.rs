@@ -1,9 +1,11 @@
 //! Single-core cost of tracing rays of the standard fan (512², 40°, r = 30 M, Schwarzschild,
-//! adaptive rtol 1e-8): a row of the fan through the hole's image, in-plane and in 4-D.
+//! adaptive rtol 1e-8): a row of the fan through the hole's image, in-plane and in 4-D; and the
+//! same row about a Kerr hole (a = 0.9 M) in Mino time; the in-plane and Mino rows again carrying
+//! the chart's time.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use spacetime::fan::{trace_hamiltonian, trace_in_plane, Fan};
-use spacetime::{Schwarzschild, Stepping, TraceSettings};
+use spacetime::fan::{trace_hamiltonian, trace_in_plane, trace_in_plane_in_time, trace_own, trace_own_in_time, Fan};
+use spacetime::{Kerr, Schwarzschild, Stepping, TraceSettings};
 use std::hint::black_box;
 
 fn fan_row(c: &mut Criterion) {
@@ -17,8 +19,20 @@ fn fan_row(c: &mut Criterion) {
     group.bench_function("in_plane", |b| {
         b.iter(|| row.iter().map(|&i| trace_in_plane(&hole, &fan, black_box(i), &settings).steps).sum::<u32>())
     });
+    // The same rays carrying the chart's time, as a moving scene traces them.
+    group.bench_function("in_plane_timed", |b| {
+        b.iter(|| row.iter().map(|&i| trace_in_plane_in_time(&hole, &fan, black_box(i), &settings).steps).sum::<u32>())
+    });
     group.bench_function("hamiltonian_4d", |b| {
         b.iter(|| row.iter().map(|&i| trace_hamiltonian(&hole, &fan, black_box(i), &settings).steps).sum::<u32>())
+    });
+    // Kerr (a = 0.9 M) in Mino time, the stepper its renders take.
+    let kerr = Kerr::new(1.0, 0.9);
+    group.bench_function("kerr_mino", |b| {
+        b.iter(|| row.iter().map(|&i| trace_own(&kerr, &fan, black_box(i), &settings).steps).sum::<u32>())
+    });
+    group.bench_function("kerr_mino_timed", |b| {
+        b.iter(|| row.iter().map(|&i| trace_own_in_time(&kerr, &fan, black_box(i), &settings).steps).sum::<u32>())
     });
     group.finish();
 }

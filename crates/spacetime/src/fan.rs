@@ -4,9 +4,9 @@
 //! crate's benchmarks turn on. It lives here, not beside `nullpath bench`, because both of them
 //! time it and benchmarks cannot reach into a binary.
 
-use crate::geodesic::plane::{trace_plane, PlaneStart};
-use crate::geodesic::{HamiltonianTracer, State, TraceSettings, Visit};
-use crate::metric::{Metric, Region, Schwarzschild};
+use crate::geodesic::plane::{trace_plane, trace_plane_in_time, PlaneStart};
+use crate::geodesic::{HamiltonianTracer, RayTracer, State, TraceSettings, Visit};
+use crate::metric::{Metric, OwnStepper, Region, Schwarzschild};
 use crate::{Fate, Tetrad};
 
 /// A square fan of `size × size` rays with vertical field of view `fov_deg`, from a static
@@ -64,15 +64,54 @@ pub fn trace_in_plane(metric: &Schwarzschild, fan: &Fan, index: u64, settings: &
     }
 }
 
+/// [`trace_in_plane`] carrying the chart's time from 0 at the camera (what a moving scene costs).
+pub fn trace_in_plane_in_time(metric: &Schwarzschild, fan: &Fan, index: u64, settings: &TraceSettings) -> FanRay {
+    let dir = fan.direction(index);
+    match PlaneStart::from_observer(metric, Region::Upper, fan.camera_position(), dir) {
+        Some(start) => {
+            let t = trace_plane_in_time(metric, start, 0.0, settings, |_| Visit::Continue);
+            FanRay { fate: t.fate, steps: t.steps }
+        }
+        None => FanRay { fate: Fate::Captured, steps: 0 },
+    }
+}
+
 /// Traces fan ray `index` with the general 4-D Hamiltonian tracer.
 pub fn trace_hamiltonian<M: Metric>(metric: &M, fan: &Fan, index: u64, settings: &TraceSettings) -> FanRay {
+    match camera_ray(metric, fan, index) {
+        Some(start) => run(HamiltonianTracer::new(metric, start, *settings)),
+        None => FanRay { fate: Fate::Captured, steps: 0 },
+    }
+}
+
+/// Traces fan ray `index` with the stepper the metric provides (Kerr's Mino-time stepper).
+pub fn trace_own<M: OwnStepper>(metric: &M, fan: &Fan, index: u64, settings: &TraceSettings) -> FanRay {
+    match camera_ray(metric, fan, index) {
+        Some(start) => run(metric.ray_tracer(start, *settings)),
+        None => FanRay { fate: Fate::Captured, steps: 0 },
+    }
+}
+
+/// [`trace_own`] carrying the chart's time from 0 at the camera (what a moving scene costs).
+pub fn trace_own_in_time<M: OwnStepper>(metric: &M, fan: &Fan, index: u64, settings: &TraceSettings) -> FanRay {
+    match camera_ray(metric, fan, index) {
+        Some(start) => run(metric.ray_tracer(start, *settings).carrying_time()),
+        None => FanRay { fate: Fate::Captured, steps: 0 },
+    }
+}
+
+/// The backward ray of pixel `index` from the static camera at chart time 0; `None` where no
+/// static observer exists.
+fn camera_ray<M: Metric>(metric: &M, fan: &Fan, index: u64) -> Option<State> {
     let [a, b, c] = fan.camera_position();
     let x = [0.0, a, b, c];
-    let Ok(frame) = Tetrad::local_observer(metric, &x) else {
-        return FanRay { fate: Fate::Captured, steps: 0 };
-    };
+    let frame = Tetrad::local_observer(metric, &x).ok()?;
     let p = frame.backward_momentum(&metric.metric(&x), fan.direction(index), 1.0);
-    let t = HamiltonianTracer::new(metric, State { x, p }, *settings).run(|_| Visit::Continue);
+    Some(State { x, p })
+}
+
+fn run(tracer: impl RayTracer) -> FanRay {
+    let t = tracer.run(|_| Visit::Continue);
     FanRay { fate: t.fate, steps: t.steps }
 }
 

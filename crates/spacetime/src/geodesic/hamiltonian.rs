@@ -85,6 +85,11 @@ impl<const N: usize> RayStep for HamiltonianStep<N> {
     fn at(&self, theta: f64) -> State {
         HamiltonianStep::at(self, theta)
     }
+
+    /// `x⁰` of the dense output: the time is part of the ray.
+    fn time_at(&self, theta: f64) -> Option<f64> {
+        Some(self.interpolant.dense_head::<1>(theta)[0])
+    }
 }
 
 /// Integrates one ray (with whatever its flow carries) step by step.
@@ -283,6 +288,11 @@ impl<M: Metric + ?Sized, const N: usize, F: Flow<N>> RayTracer for HamiltonianTr
 
     fn run(self, visit: impl FnMut(&HamiltonianStep<N>) -> Visit) -> Trace {
         HamiltonianTracer::run(self, visit)
+    }
+
+    /// The time is `x⁰`, integrated with the ray.
+    fn carrying_time(self) -> Self {
+        self
     }
 }
 

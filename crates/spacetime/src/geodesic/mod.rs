@@ -21,6 +21,7 @@ pub mod from_observer;
 mod hamiltonian;
 mod interpolant;
 pub mod plane;
+pub(crate) mod quadrature;
 pub mod rk4;
 pub mod tangent_triangle;
 pub(crate) mod taylor;
@@ -33,12 +34,21 @@ use crate::tensor::{Covector4, Vector4};
 /// One accepted step of a 4-D tracer, with the ray anywhere inside it: what a caller testing
 /// the ray against a scene needs, whichever stepper took it.
 pub trait RayStep {
-    /// Chart position `x^μ` at fraction `θ ∈ [0, 1]` of the step.
+    /// Chart position `x^μ` at fraction `θ ∈ [0, 1]` of the step. Its time `x⁰` is exact where
+    /// the tracer integrates time as part of the ray (the 4-D tracer); a stepper that computes it
+    /// only on request (Kerr's Mino stepper) gives the time at the step's start, and
+    /// [`RayStep::time_at`] gives it inside.
     fn position_at(&self, theta: f64) -> Vector4;
     /// Chart position at the step's end (`position_at(1)`, without interpolating).
     fn end_position(&self) -> Vector4;
-    /// The ray's state (chart position and covariant momentum) at fraction `θ` of the step.
+    /// The ray's state (chart position and covariant momentum) at fraction `θ` of the step, its
+    /// time as [`RayStep::position_at`]'s.
     fn at(&self, theta: f64) -> State;
+    /// The chart's coordinate time at fraction `θ` of the step, where the tracer carries it
+    /// ([`RayTracer::carrying_time`]); `None` where it does not. Rays are traced backwards
+    /// (past-directed momentum), so it falls along the ray from the start's: the light reaching
+    /// the start at `t₀` passed each point at the earlier time given there.
+    fn time_at(&self, theta: f64) -> Option<f64>;
 }
 
 /// A tracer of one ray in a 4-D chart: the generic [`HamiltonianTracer`], or a stepper a metric
@@ -48,6 +58,13 @@ pub trait RayTracer {
     type Step: RayStep;
     /// Traces the ray to its end, showing every accepted step to `visit`.
     fn run(self, visit: impl FnMut(&Self::Step) -> Visit) -> Trace;
+    /// The tracer with the chart's coordinate time carried along the ray, for every step's
+    /// [`RayStep::time_at`] and the trace's end (`end.x[0]`). A tracer whose ray includes the
+    /// time (the 4-D tracer) carries it anyway; one that computes it separately (Kerr's Mino
+    /// stepper) spends nothing on it unless asked, and takes the same steps either way.
+    fn carrying_time(self) -> Self
+    where
+        Self: Sized;
 }
 
 /// A point on a ray: position `x^μ` and covariant momentum `p_μ`.

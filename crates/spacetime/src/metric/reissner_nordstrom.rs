@@ -18,7 +18,7 @@ use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
 use super::Spacetime;
 use crate::disk::CircularOrbits;
-use crate::geodesic::plane::PlaneMetric;
+use crate::geodesic::plane::{ChartTime, PlaneMetric};
 use crate::metric::schwarzschild::connect::Connector;
 use crate::tensor::{norm3, spatial, Vector4};
 
@@ -158,6 +158,11 @@ impl PlaneMetric for ReissnerNordstrom {
 
     fn capture_u(&self) -> Option<f64> {
         (self.mass > 0.0).then(|| 1.0 / self.horizon_radius())
+    }
+
+    /// The 4-D chart is outgoing Kerr–Schild.
+    fn chart_time(&self) -> ChartTime {
+        ChartTime::OutgoingKerrSchild
     }
 }
 

@@ -25,9 +25,13 @@
 //! every [`Metric`]. What serves Schwarzschild alone (its orbit's Taylor series, its light
 //! connector) lives in [`crate::metric::schwarzschild`].
 //!
+//! The chart's coordinate time along a ray is not integrated by the stepper: callers that need it
+//! ask for it ([`trace_plane_in_time`]), and it is integrated over each step's dense output
+//! (`time`).
+//!
 //! Files: the ray's metric and start here; its steps and the points inside them in `step`; the
-//! plane's directions at a point in `axes`; the tracer in `trace`; the aim in `aim` and the
-//! shots it takes in `shoot`.
+//! chart's time along them in `time`; the plane's directions at a point in `axes`; the tracer in
+//! `trace`; the aim in `aim` and the shots it takes in `shoot`.
 
 use crate::metric::{Metric, Region};
 use crate::tensor::{dot3, norm3, scale3};
@@ -38,12 +42,14 @@ mod aim_tests;
 mod axes;
 mod shoot;
 mod step;
+mod time;
 mod trace;
 
 pub use aim::{plane_aim, PlaneAim, PlaneAimSettings, Side, Way};
 pub(crate) use axes::PlaneAxes;
 pub use step::{PlaneAttempt, PlanePoint, PlaneStep, Segment};
-pub use trace::{trace_plane, PlaneTrace};
+pub use time::{ChartTime, Clock};
+pub use trace::{trace_plane, trace_plane_in_time, PlaneTrace};
 
 /// A static, spherically symmetric metric reduced to the plane of a ray. `u` is the inverse
 /// chart radius, `'` is `d/dφ`, and the photon's energy is 1 so `b = L/E = L`.
@@ -70,6 +76,11 @@ pub trait PlaneMetric: Metric {
     /// `κ = dρ/dl` at `u`: world (areal) radial length per proper radial length. World tangential
     /// lengths are proper, so the static frame differs from world axes by this radial factor.
     fn radial_scale(&self, u: f64) -> f64;
+    /// The time coordinate of the metric's 4-D chart, which the tracer reports along a ray where
+    /// asked ([`trace_plane_in_time`]): the static time unless the chart says otherwise.
+    fn chart_time(&self) -> ChartTime {
+        ChartTime::Static
+    }
     /// `u` of the horizon: rays reaching it are captured.
     fn capture_u(&self) -> Option<f64> {
         None

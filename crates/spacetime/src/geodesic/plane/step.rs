@@ -3,11 +3,12 @@
 //! sees ([`PlaneStep`]), which places points anywhere inside it in world coordinates.
 
 use super::axes::{sin_cos_small, PlaneAxes};
+use super::time::{curved_fall, straight_fall, Clock};
 use super::{region_sign, PlaneMetric};
 use crate::geodesic::Interpolant;
 use crate::metric::schwarzschild::binet_taylor::OrbitStep;
 use crate::metric::Region;
-use crate::tensor::{cross3, scale3};
+use crate::tensor::{cross3, dot3, norm3, scale3};
 
 /// One stretch of a ray between throat crossings: the flat solution's constants and the plane
 /// (opaque: steps refer to it so points inside them can be placed).
@@ -114,9 +115,16 @@ pub enum PlaneStep<'a> {
     /// cut where it leaves the escape sphere).
     /// `frame` is the chart direction and its in-plane normal at `phi0`, so points inside the step
     /// need only a small rotation.
-    Curved { segment: &'a Segment, phi0: f64, attempt: &'a PlaneAttempt, span: f64, frame: ([f64; 3], [f64; 3]) },
+    Curved {
+        segment: &'a Segment,
+        phi0: f64,
+        attempt: &'a PlaneAttempt,
+        span: f64,
+        frame: ([f64; 3], [f64; 3]),
+        clock: Option<Clock>,
+    },
     /// A straight piece: flat space, or a radial ray. `length` may be infinite.
-    Straight { region: Region, from: [f64; 3], direction: [f64; 3], length: f64 },
+    Straight { region: Region, from: [f64; 3], direction: [f64; 3], length: f64, clock: Option<Clock> },
 }
 
 /// A point along a step in world terms: where, which way (in the static observer's frame, axes
@@ -145,6 +153,34 @@ impl PlaneStep<'_> {
         }
     }
 
+    /// The chart's coordinate time at fraction `θ ∈ [0, 1]` of the step, where the trace carries
+    /// it ([`trace_plane_in_time`](super::trace_plane_in_time)); `None` where it does not. It
+    /// falls along the ray, which is traced backwards (see [`super::time`]). On an infinite
+    /// straight piece (flat space) every `θ > 0` is at infinity: chord hits there are placed
+    /// by distance, [`PlaneStep::time_at_distance`].
+    pub fn time_at<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> Option<f64> {
+        match self {
+            PlaneStep::Curved { segment, phi0, attempt, span, clock, .. } => {
+                clock.map(|c| c.start - curved_fall(metric, segment, *phi0, attempt, c.b, theta * span))
+            }
+            PlaneStep::Straight { length, .. } => {
+                let distance = if theta == 0.0 { 0.0 } else { theta * length };
+                self.time_at_distance(metric, distance)
+            }
+        }
+    }
+
+    /// The chart's coordinate time at world distance `s` along a straight piece, where the
+    /// trace carries it; `None` on curved steps and where it does not.
+    pub fn time_at_distance<M: PlaneMetric + ?Sized>(&self, metric: &M, s: f64) -> Option<f64> {
+        match self {
+            PlaneStep::Straight { from, direction, clock, .. } => {
+                clock.map(|c| c.start - straight_fall(metric, norm3(from), dot3(from, direction) > 0.0, s))
+            }
+            PlaneStep::Curved { .. } => None,
+        }
+    }
+
     /// `(φ, u, u')` at fraction `θ` of a curved step.
     pub(super) fn curve(segment: &Segment, phi0: f64, attempt: &PlaneAttempt, theta: f64) -> (f64, f64, f64) {
         let phi = phi0 + theta * attempt.h();
@@ -156,12 +192,12 @@ impl PlaneStep<'_> {
     /// World position and direction at fraction `θ ∈ [0, 1]` of the step.
     pub fn point<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> PlanePoint {
         match self {
-            PlaneStep::Curved { segment, phi0, attempt, span, frame } => {
+            PlaneStep::Curved { segment, phi0, attempt, span, frame, .. } => {
                 let (u, du, axes) = Self::axes(segment, *phi0, attempt, frame, theta * span);
                 let direction = axes.along(-metric.radial_stretch(u) * du, u);
                 PlanePoint { region: segment.region, position: axes.at_radius(metric.world_radius(u)), direction }
             }
-            PlaneStep::Straight { region, from, direction, length } => PlanePoint {
+            PlaneStep::Straight { region, from, direction, length, .. } => PlanePoint {
                 region: *region,
                 position: Self::along(from, direction, *length, theta),
                 direction: *direction,
@@ -190,7 +226,7 @@ impl PlaneStep<'_> {
     /// costs a square root, a normalisation and `u'`).
     pub fn position<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> [f64; 3] {
         match self {
-            PlaneStep::Curved { segment, phi0, attempt, span, frame: (n0, t0) } => {
+            PlaneStep::Curved { segment, phi0, attempt, span, frame: (n0, t0), .. } => {
                 let phi = phi0 + theta * span * attempt.h();
                 let u = segment.flat(phi).0 + attempt.dense_u(theta * span);
                 let (s, c) = sin_cos_small(phi - phi0);
@@ -205,7 +241,7 @@ impl PlaneStep<'_> {
     /// the static observer's) at fraction `θ ∈ [0, 1]` of the step: `d(ρ n)/dφ = ρ'(u) u' n + ρ t`.
     pub fn knot<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> ([f64; 3], [f64; 3]) {
         match self {
-            PlaneStep::Curved { segment, phi0, attempt, span, frame } => {
+            PlaneStep::Curved { segment, phi0, attempt, span, frame, .. } => {
                 let (u, du, axes) = Self::axes(segment, *phi0, attempt, frame, theta * span);
                 let rho = metric.world_radius(u);
                 (axes.at_radius(rho), axes.along(metric.world_radius_slope(u) * du, rho))
@@ -220,7 +256,7 @@ impl PlaneStep<'_> {
     /// with the tangent's length, `span · h · |dx/dφ|`, for root finding along the step.
     pub fn motion<M: PlaneMetric + ?Sized>(&self, metric: &M, theta: f64) -> ([f64; 3], [f64; 3]) {
         match self {
-            PlaneStep::Curved { segment, phi0, attempt, span, frame } => {
+            PlaneStep::Curved { segment, phi0, attempt, span, frame, .. } => {
                 let (u, du, axes) = Self::axes(segment, *phi0, attempt, frame, theta * span);
                 let rho = metric.world_radius(u);
                 let sweep = span * attempt.h();

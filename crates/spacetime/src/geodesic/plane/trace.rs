@@ -2,6 +2,7 @@
 //! ray's fate (module documentation of [`super`]).
 
 use super::step::{PlaneAttempt, PlaneStep, Segment};
+use super::time::Clock;
 use super::{region_sign, PlaneMetric, PlaneStart};
 use crate::geodesic::{dopri5, Failure, Fate, Interpolant, Stepping, TraceSettings, Visit};
 use crate::metric::schwarzschild::binet_taylor::OrbitStep;
@@ -19,6 +20,10 @@ pub struct PlaneTrace {
     /// Azimuth swept from start to the asymptote, minus π (the bending angle of a ray from
     /// infinity), computed without cancellation; `NaN` unless the ray escaped or traversed.
     pub swept_minus_pi: f64,
+    /// The chart's coordinate time at the end of the last step shown (the escape radius, the
+    /// horizon, or the end of the step the caller stopped at; `−∞` for flat space's one infinite
+    /// step), where the trace carries time ([`trace_plane_in_time`]).
+    pub end_time: Option<f64>,
 }
 
 struct Tracer<'m, M: PlaneMetric + ?Sized> {
@@ -190,25 +195,56 @@ impl<'m, M: PlaneMetric + ?Sized> Tracer<'m, M> {
     }
 }
 
-/// Traces an in-plane ray to its end, showing every accepted step to `visit`.
+/// Traces an in-plane ray to its end, showing every accepted step to `visit`. Its steps carry no
+/// time ([`PlaneStep::time_at`] is `None`): the scene is taken to stand still while light
+/// crosses it, and nothing is spent on the time.
 pub fn trace_plane<M: PlaneMetric + ?Sized>(
     metric: &M,
     start: PlaneStart,
+    settings: &TraceSettings,
+    visit: impl FnMut(&PlaneStep<'_>) -> Visit,
+) -> PlaneTrace {
+    trace(metric, start, None, settings, visit)
+}
+
+/// [`trace_plane`] carrying the chart's coordinate time ([`PlaneMetric::chart_time`]) from `time`
+/// at the start: every step gives it anywhere inside ([`PlaneStep::time_at`]) and the trace at
+/// its end ([`PlaneTrace::end_time`]). The ray is traced backwards, so the time falls along it:
+/// the light seen at the start at `time` left each point at the earlier time given there. The
+/// steps, and everything but the time, are those of [`trace_plane`], bit for bit.
+pub fn trace_plane_in_time<M: PlaneMetric + ?Sized>(
+    metric: &M,
+    start: PlaneStart,
+    time: f64,
+    settings: &TraceSettings,
+    visit: impl FnMut(&PlaneStep<'_>) -> Visit,
+) -> PlaneTrace {
+    trace(metric, start, Some(time), settings, visit)
+}
+
+/// [`trace_plane`], with the time from `time` at the start where it is `Some`.
+fn trace<M: PlaneMetric + ?Sized>(
+    metric: &M,
+    start: PlaneStart,
+    time: Option<f64>,
     settings: &TraceSettings,
     mut visit: impl FnMut(&PlaneStep<'_>) -> Visit,
 ) -> PlaneTrace {
     let ray = match start {
         PlaneStart::Radial { region, from, direction } => {
-            return trace_radial(metric, region, from, direction, settings, visit)
+            return trace_radial(metric, region, from, direction, time, settings, visit)
         }
         PlaneStart::Plane(ray) => ray,
     };
+    // A straight piece's time needs no impact parameter.
+    let clock = |start: f64| Clock { start, b: ray.b };
     if metric.is_flat() {
         let sign = region_sign(ray.region);
         let (dr, dphi) = (-metric.radial_stretch(ray.u) * ray.du, ray.u);
         let direction = normalize3(&std::array::from_fn(|i| sign * (dr * ray.e1[i] + dphi * ray.e2[i])));
         let from = scale3(&ray.e1, sign * metric.world_radius(ray.u));
-        let straight = PlaneStep::Straight { region: ray.region, from, direction, length: f64::INFINITY };
+        let length = f64::INFINITY;
+        let straight = PlaneStep::Straight { region: ray.region, from, direction, length, clock: time.map(clock) };
         let fate = if visit(&straight) == Visit::Stop { Fate::Stopped } else { Fate::Escaped { direction } };
         // A straight line sweeps π − atan2(u, u') from its start to infinity.
         let swept_minus_pi = -ray.u.atan2(ray.du);
@@ -217,6 +253,7 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
             steps: 1,
             max_abs_hamiltonian: metric.plane_hamiltonian(ray.u, ray.du, ray.b).abs(),
             swept_minus_pi,
+            end_time: straight.time_at(metric, 1.0),
         };
     }
     let split = ray.b > 64.0 * metric.length_scale();
@@ -240,6 +277,7 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
     t.dw = t.derivative();
     let start_region = ray.region;
     let escape_u = metric.u_of_world_radius(settings.escape_radius).unwrap_or(0.0);
+    let mut time = time;
     let mut outcome = |t: &mut Tracer<'_, M>| -> Result<(Fate, f64), Failure> {
         loop {
             let phi0 = t.phi;
@@ -270,8 +308,13 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
                 (false, None) => 1.0,
             };
             let frame = t.segment.chart_direction(phi0);
-            let step = PlaneStep::Curved { segment: &t.segment, phi0, attempt: &attempt, span, frame };
-            if visit(&step) == Visit::Stop {
+            let clock = time.map(clock);
+            let step = PlaneStep::Curved { segment: &t.segment, phi0, attempt: &attempt, span, frame, clock };
+            let stop = visit(&step) == Visit::Stop;
+            if clock.is_some() {
+                time = step.time_at(metric, 1.0);
+            }
+            if stop {
                 return Ok((Fate::Stopped, f64::NAN));
             }
             if capture.is_some() {
@@ -296,7 +339,7 @@ pub fn trace_plane<M: PlaneMetric + ?Sized>(
         }
     };
     let (fate, swept_minus_pi) = outcome(&mut t).unwrap_or_else(|f| (Fate::Failed(f), f64::NAN));
-    PlaneTrace { fate, steps: t.steps, max_abs_hamiltonian: t.max_h, swept_minus_pi }
+    PlaneTrace { fate, steps: t.steps, max_abs_hamiltonian: t.max_h, swept_minus_pi, end_time: time }
 }
 
 /// A ray with zero impact parameter: straight along the radius, in world coordinates, through a
@@ -306,45 +349,51 @@ fn trace_radial<M: PlaneMetric + ?Sized>(
     region: Region,
     from: [f64; 3],
     direction: [f64; 3],
+    time: Option<f64>,
     settings: &TraceSettings,
     mut visit: impl FnMut(&PlaneStep<'_>) -> Visit,
 ) -> PlaneTrace {
     let rho = norm3(&from);
     let inward = dot3(&from, &direction) < 0.0;
-    let mut steps = 0;
+    let (mut steps, mut time) = (0, time);
     // Outward rays sweep no azimuth; inward ones flip to the antipode (π) unless they end first.
-    let finish = |fate: Fate, steps: u32| {
+    let finish = |fate: Fate, steps: u32, end_time: Option<f64>| {
         let swept_minus_pi = match fate {
             Fate::Escaped { .. } if inward => 0.0,
             Fate::Escaped { .. } | Fate::Traversed { .. } => -PI,
             _ => f64::NAN,
         };
-        PlaneTrace { fate, steps, max_abs_hamiltonian: 0.0, swept_minus_pi }
+        PlaneTrace { fate, steps, max_abs_hamiltonian: 0.0, swept_minus_pi, end_time }
     };
-    let mut go = |region: Region, from: [f64; 3], length: f64, steps: &mut u32| {
+    // A radial ray has no plane and no impact parameter.
+    let mut go = |region: Region, from: [f64; 3], length: f64, steps: &mut u32, time: &mut Option<f64>| {
         *steps += 1;
-        visit(&PlaneStep::Straight { region, from, direction, length }) == Visit::Stop
+        let clock = time.map(|start| Clock { start, b: 0.0 });
+        let step = PlaneStep::Straight { region, from, direction, length, clock };
+        let stop = visit(&step) == Visit::Stop;
+        *time = step.time_at(metric, 1.0);
+        stop
     };
     if !inward {
-        let stopped = go(region, from, settings.escape_radius - rho, &mut steps);
-        return finish(if stopped { Fate::Stopped } else { Fate::Escaped { direction } }, steps);
+        let stopped = go(region, from, settings.escape_radius - rho, &mut steps, &mut time);
+        return finish(if stopped { Fate::Stopped } else { Fate::Escaped { direction } }, steps, time);
     }
     if let Some(uc) = metric.capture_u() {
-        let stopped = go(region, from, rho - metric.world_radius(uc), &mut steps);
-        return finish(if stopped { Fate::Stopped } else { Fate::Captured }, steps);
+        let stopped = go(region, from, rho - metric.world_radius(uc), &mut steps, &mut time);
+        return finish(if stopped { Fate::Stopped } else { Fate::Captured }, steps, time);
     }
     if let Some(ut) = metric.throat_u() {
         let throat = metric.world_radius(ut);
-        if go(region, from, rho - throat, &mut steps) {
-            return finish(Fate::Stopped, steps);
+        if go(region, from, rho - throat, &mut steps, &mut time) {
+            return finish(Fate::Stopped, steps, time);
         }
         let exit = scale3(&normalize3(&from), -throat);
-        let stopped = go(region.other(), exit, settings.escape_radius - throat, &mut steps);
-        return finish(if stopped { Fate::Stopped } else { Fate::Traversed { direction } }, steps);
+        let stopped = go(region.other(), exit, settings.escape_radius - throat, &mut steps, &mut time);
+        return finish(if stopped { Fate::Stopped } else { Fate::Traversed { direction } }, steps, time);
     }
     // Flat space: straight through the centre and out.
-    let stopped = go(region, from, rho + settings.escape_radius, &mut steps);
-    finish(if stopped { Fate::Stopped } else { Fate::Escaped { direction } }, steps)
+    let stopped = go(region, from, rho + settings.escape_radius, &mut steps, &mut time);
+    finish(if stopped { Fate::Stopped } else { Fate::Escaped { direction } }, steps, time)
 }
 
 #[cfg(test)]

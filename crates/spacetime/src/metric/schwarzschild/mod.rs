@@ -12,7 +12,7 @@ use super::kerr_schild::{KerrSchild, KerrSchildPoint};
 use super::Region;
 use super::Spacetime;
 use crate::disk::CircularOrbits;
-use crate::geodesic::plane::PlaneMetric;
+use crate::geodesic::plane::{ChartTime, PlaneMetric};
 use crate::tensor::{norm3, spatial, Vector4};
 use connect::Connector;
 
@@ -138,6 +138,11 @@ impl PlaneMetric for Schwarzschild {
 
     fn capture_u(&self) -> Option<f64> {
         (self.mass > 0.0).then(|| 1.0 / self.horizon_radius())
+    }
+
+    /// The 4-D chart is outgoing Kerr–Schild.
+    fn chart_time(&self) -> ChartTime {
+        ChartTime::OutgoingKerrSchild
     }
 }
 

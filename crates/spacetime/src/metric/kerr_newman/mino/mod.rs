@@ -39,8 +39,10 @@
 //! `G = K u²/(A − u')` or `(A + u')/D`. The chart's radial momentum is `p_r = p · n = E − G`.
 //!
 //! The state is `(u, u', n, v)`: eight numbers, as the 4-D tracer's, with a right-hand side of
-//! about 40 flops and one division. The chart's time is not integrated: a hole is stationary, and
-//! the time of a state here is the start's. Nothing is re-projected onto the constraints
+//! about 40 flops and one division. The chart's time is not integrated by the stepper: a hole is
+//! stationary, so nothing else depends on it, and a caller that needs it asks for it
+//! ([`MinoTracer::carrying_time`]); it is then integrated over each step's dense output (`time`).
+//! Nothing is re-projected onto the constraints
 //! `u'² = U(u)`, `|n| = 1`, `n · v = 0`, `|v|² = Q + L² + a²E² n_z²`: the steps' truncation
 //! control keeps them (the tests measure how well).
 //!
@@ -55,12 +57,13 @@
 //! in steps of a good part of a radian where Dormand–Prince 5(4) took a tenth.
 //!
 //! Files: the constants of motion and the state in `motion`, the series and the dense output in
-//! `series`, the step control and the fate in `tracer`.
+//! `series`, the chart's time along a step in `time`, the step control and the fate in `tracer`.
 
 mod motion;
 mod series;
 #[cfg(test)]
 mod tests;
+mod time;
 mod tracer;
 
 pub use tracer::{MinoStep, MinoTracer};

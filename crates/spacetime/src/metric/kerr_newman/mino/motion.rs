@@ -38,7 +38,7 @@ impl Constants {
 
     /// `G = (P − r')/Δ` from `u`, `u'` and `A = E + b u²`, regular on the past horizon.
     #[inline]
-    fn g(&self, u: f64, w: f64, big_a: f64) -> f64 {
+    pub(super) fn g(&self, u: f64, w: f64, big_a: f64) -> f64 {
         if Self::g_by_quotient_of_k(w, big_a) {
             self.carter_k * u * u / (big_a - w)
         } else {
@@ -78,11 +78,8 @@ impl Constants {
     fn four_velocity(&self, y: &[f64; 8]) -> Vector4 {
         let dy = self.rhs(y);
         let [u, w, _, _, n2, ..] = *y;
-        let (r, a, e) = (1.0 / u, self.spin, self.energy);
-        let big_a = e + self.b * u * u;
-        let g = self.g(u, w, big_a);
-        let sin2 = y[2] * y[2] + y[3] * y[3];
-        let dt = big_a * r * r + (2.0 * self.mass * r - self.charge2) * g + a * (self.axial - a * e * sin2);
+        let (r, a) = (1.0 / u, self.spin);
+        let dt = self.time_rate(u, w, y[2] * y[2] + y[3] * y[3]);
         let inv_sigma = 1.0 / (r * r + a * a * n2 * n2);
         let v = self.velocity(y, &dy);
         [dt * inv_sigma, v[0] * inv_sigma, v[1] * inv_sigma, v[2] * inv_sigma]

@@ -184,6 +184,14 @@ impl Dense {
         }
     }
 
+    /// The step's length in Mino time.
+    pub(super) fn h(&self) -> f64 {
+        match self {
+            Dense::Taylor { h, .. } => *h,
+            Dense::Rk4(interpolant) => interpolant.h(),
+        }
+    }
+
     pub(super) fn end(&self) -> [f64; 8] {
         match self {
             Dense::Taylor { end, .. } => *end,

@@ -3,6 +3,7 @@
 
 use super::motion::{from_chart, Constants};
 use super::series::{column, Dense, ORDER};
+use super::time::elapsed;
 use crate::geodesic::taylor;
 use crate::geodesic::{Failure, Fate, Interpolant, RayStep, RayTracer, State, Stepping, Trace, TraceSettings, Visit};
 use crate::metric::{KerrNewman, KerrSchild};
@@ -12,11 +13,17 @@ use crate::tensor::Vector4;
 #[derive(Clone, Copy, Debug)]
 pub struct MinoStep {
     constants: Constants,
-    /// The chart time of every state (the start's).
+    /// The chart time at the step's start.
     time: f64,
+    /// Whether the tracer carries the time ([`MinoTracer::carrying_time`]); if not, `time` is the
+    /// ray's start's.
+    timed: bool,
     pub(super) dense: Dense,
 }
 
+/// Positions and states inside a step have the time at the step's start as `x⁰` (placing points
+/// for chord tests needs no time, and the time inside a step costs a quadrature): the time
+/// anywhere inside is [`RayStep::time_at`].
 impl RayStep for MinoStep {
     #[inline]
     fn position_at(&self, theta: f64) -> Vector4 {
@@ -36,6 +43,10 @@ impl RayStep for MinoStep {
         let [x, py, z] = self.constants.point(y[0], [y[2], y[3], y[4]]);
         State { x: [self.time, x, py, z], p: self.constants.momentum(&y).0 }
     }
+
+    fn time_at(&self, theta: f64) -> Option<f64> {
+        self.timed.then(|| self.time + elapsed(&self.constants, &self.dense, theta))
+    }
 }
 
 /// Traces one ray about a hole of Kerr's family in Mino time (see the module documentation),
@@ -51,7 +62,10 @@ pub struct MinoTracer {
     settings: TraceSettings,
     /// `1/r₊`: a ray with `u` beyond it is inside the horizon.
     horizon_u: f64,
+    /// The chart time at `y`: the start's unless the tracer carries it.
     time: f64,
+    /// Whether the time is carried ([`MinoTracer::carrying_time`]).
+    timed: bool,
     pub(super) y: [f64; 8],
     /// RK4's `dy/dλ_M` at `y` (its next step's first stage; unused by Taylor steps).
     dy: [f64; 8],
@@ -73,7 +87,7 @@ impl MinoTracer {
             }
             Stepping::Adaptive { .. } => 0.0,
         };
-        Self { constants, settings, horizon_u, time: start.x[0], y, dy, next, steps: 0 }
+        Self { constants, settings, horizon_u, time: start.x[0], timed: false, y, dy, next, steps: 0 }
     }
 
     /// The ray's state now.
@@ -140,7 +154,12 @@ impl MinoTracer {
         }
         self.y = y1;
         self.steps += 1;
-        Ok(MinoStep { constants, time: self.time, dense })
+        let time = self.time;
+        if self.timed {
+            self.time += elapsed(&constants, &dense, 1.0);
+        }
+        // Built in place: a step (its series) is too large to move for nothing.
+        Ok(MinoStep { constants, time, timed: self.timed, dense })
     }
 
     /// The cap `cap` of a Taylor step, lengthened for an outgoing ray (`u' < 0`) inside the
@@ -226,6 +245,13 @@ impl MinoTracer {
 
 impl RayTracer for MinoTracer {
     type Step = MinoStep;
+
+    /// The tracer with the chart's time integrated along every step (see `time`): the steps'
+    /// [`RayStep::time_at`] and the trace's end carry it; everything else is as without, bit
+    /// for bit.
+    fn carrying_time(self) -> Self {
+        Self { timed: true, ..self }
+    }
 
     /// Traces the ray to its end, showing every accepted step to `visit`; the trace's largest
     /// `|H|` is that of the chart momentum at the step ends (or at the start and end).
