@@ -47,7 +47,8 @@ def install(zip_path, binary):
     bpy.ops.preferences.addon_install(filepath=os.path.abspath(zip_path), overwrite=True)
     bpy.ops.preferences.addon_enable(module="nullpath_addon")
     bpy.context.preferences.addons["nullpath_addon"].preferences.binary = os.path.abspath(binary)
-    engines = {engine.bl_idname for engine in bpy.types.RenderEngine.__subclasses__()}
+    # Abstract engine bases (Blender 4's HydraRenderEngine) have no bl_idname.
+    engines = {getattr(engine, "bl_idname", None) for engine in bpy.types.RenderEngine.__subclasses__()}
     check("NULLPATH" in engines, "the add-on installs from its zip and registers the NULLPATH engine")
 
 
