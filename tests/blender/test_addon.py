@@ -274,7 +274,7 @@ def check_extension(zip_path):
 
 def main():
     args = arguments()
-    print(f"Blender {bpy.app.version_string}", flush=True)
+    print(f"Blender version: {bpy.app.version_string}", flush=True)
     os.makedirs(args.workdir, exist_ok=True)
     install(args.zip, args.nullpath)
     scene, hole = build_scene()
