@@ -62,7 +62,7 @@ def read_rgba(path, width, height):
     try:
         image.colorspace_settings.name = "Non-Color"  # the values as written, no conversion
         if tuple(image.size) != (width, height):
-            raise export.ExportError(f"nullpath wrote a {image.size[0]}×{image.size[1]} image, not {width}×{height}")
+            raise runner.RunError(f"nullpath wrote a {image.size[0]}×{image.size[1]} image, not {width}×{height}")
         pixels = array.array("f", bytes(4 * 4 * width * height))
         image.pixels.foreach_get(pixels)
         return pixels
