@@ -15,12 +15,18 @@ bl_info = {
     "category": "Render",
 }
 
-from . import engine, operators, properties, ui  # noqa: E402
+import addon_utils  # noqa: E402
+
+from . import engine, export, operators, properties, ui  # noqa: E402
 
 _modules = (properties, operators, engine, ui)
 
 
 def register():
+    # The export runs Blender's glTF exporter, an add-on of its own that a build or a person may
+    # have left off (it is on in Blender's factory settings).
+    if not addon_utils.check(export.GLTF_ADDON)[1]:
+        addon_utils.enable(export.GLTF_ADDON, default_set=True)
     for module in _modules:
         module.register()
 

@@ -20,6 +20,8 @@ from mathutils import Vector
 from . import spacetime, toml_writer
 
 SCENE_FILE = "scene.toml"
+# Blender's glTF exporter, an add-on that ships with Blender.
+GLTF_ADDON = "io_scene_gltf2"
 GLTF_FILE = "scene.glb"
 # Panorama formats nullpath reads (docs/scene-format.md, `type = "equirect"`).
 SKY_FORMATS = (".png", ".exr", ".hdr")
@@ -140,9 +142,15 @@ def camera_table(scene, camera_object, matrix, origin, width, height):
     return table
 
 
+def uses_nodes(world):
+    """Whether the world's shader is its node tree: always in Blender 5.0 and later (which
+    deprecate `World.use_nodes`), else where the world's Use Nodes is on."""
+    return world.node_tree is not None and (bpy.app.version >= (5, 0, 0) or world.use_nodes)
+
+
 def background_node(world):
     """The Background shader that feeds the world's active output, or None."""
-    if not world.use_nodes or world.node_tree is None:
+    if not uses_nodes(world):
         return None
     for node in world.node_tree.nodes:
         if node.type == "OUTPUT_WORLD" and node.is_active_output:
@@ -159,7 +167,7 @@ def sky_table(world, directory, warnings):
         return {"type": "constant", "radiance": [0.0, 0.0, 0.0]}
     node = background_node(world)
     if node is None:
-        if world.use_nodes:
+        if uses_nodes(world):
             warnings.append(f"world {world.name}: no Background shader feeds its output; the sky is its viewport colour")
         return {"type": "constant", "radiance": numbers(world.color)}
     strength_input = node.inputs["Strength"]
@@ -229,7 +237,10 @@ def export_gltf(path):
     """The scene's renderable objects and lights, as they are at the current frame, into a binary
     glTF at `path`, y-up, modifiers applied, cameras left out (the scene file has the camera), lights in unitless intensity
     (W / 4π: the radiance scale Cycles gives a point light)."""
-    options = bpy.ops.export_scene.gltf.get_rna_type().properties.keys()
+    try:
+        options = bpy.ops.export_scene.gltf.get_rna_type().properties.keys()
+    except KeyError:
+        raise ExportError("Blender's glTF exporter is off: enable the add-on 'Import-Export: glTF 2.0 format' in Preferences") from None
     # The option was renamed in Blender 3.6.
     lighting = "export_import_convert_lighting_mode" if "export_import_convert_lighting_mode" in options else "convert_lighting_mode"
     directory = tempfile.mkdtemp(dir=os.path.dirname(path), prefix=".partial-")

@@ -27,6 +27,8 @@ MASS = 0.12
 HOLE_AT = Vector((-0.5, -2.2, 1.0))
 SKY = 0.5  # the world's grey, bright enough that the shadow stands out
 RED = (0.8, 0.05, 0.05, 1.0)
+GLTF_ADDON = "io_scene_gltf2"
+EXTENSION = "bl_ext.user_default.nullpath"  # the manifest's id in Blender's own user repository
 
 
 def arguments():
@@ -44,10 +46,17 @@ def check(condition, message):
 
 
 def install(zip_path, binary):
+    """Installs the zip as a legacy add-on (Blender's oldest way, still in 4.2 and later), with
+    Blender's glTF exporter off: the add-on turns it on."""
+    import addon_utils
+
+    addon_utils.disable(GLTF_ADDON, default_set=True)
     bpy.ops.preferences.addon_install(filepath=os.path.abspath(zip_path), overwrite=True)
     bpy.ops.preferences.addon_enable(module="nullpath_addon")
+    check(addon_utils.check(GLTF_ADDON) == (True, True), "the add-on turns Blender's glTF exporter on")
     bpy.context.preferences.addons["nullpath_addon"].preferences.binary = os.path.abspath(binary)
-    engines = {engine.bl_idname for engine in bpy.types.RenderEngine.__subclasses__()}
+    # Abstract engine bases (Blender 4's HydraRenderEngine) have no bl_idname.
+    engines = {getattr(engine, "bl_idname", None) for engine in bpy.types.RenderEngine.__subclasses__()}
     check("NULLPATH" in engines, "the add-on installs from its zip and registers the NULLPATH engine")
 
 
@@ -55,7 +64,8 @@ def build_scene():
     scene = bpy.context.scene
     check("Cube" in bpy.data.objects and scene.camera is not None, "factory scene has a cube and a camera")
     world = scene.world
-    world.use_nodes = True
+    if bpy.app.version < (5, 0, 0):  # from 5.0 a world always uses its nodes
+        world.use_nodes = True
     background = world.node_tree.nodes["Background"]
     background.inputs["Color"].default_value = (SKY, SKY, SKY, 1.0)
     background.inputs["Strength"].default_value = 1.0
@@ -249,8 +259,22 @@ def check_panorama(scene, hole, directory):
     check(dominant == ["R", "B", "G"], f"the panorama's centre is ahead (+X), −Y to the right: centre, right, left are {dominant}")
 
 
+def check_extension(zip_path):
+    """Blender 4.2 and later also install the zip as an extension (its blender_manifest.toml), in
+    place of the legacy add-on."""
+    if bpy.app.version < (4, 2, 0):
+        return
+    bpy.ops.preferences.addon_disable(module="nullpath_addon")
+    bpy.ops.extensions.package_install_files(filepath=os.path.abspath(zip_path), repo="user_default", enable_on_install=True)
+    check(EXTENSION in bpy.context.preferences.addons, f"the zip installs and enables as the extension {EXTENSION}")
+    bpy.context.scene.render.engine = "NULLPATH"
+    check(hasattr(bpy.context.preferences.addons[EXTENSION].preferences, "binary") and hasattr(bpy.ops.nullpath, "add_black_hole"),
+          "the extension registers the engine, the operators and the preferences")
+
+
 def main():
     args = arguments()
+    print(f"Blender version: {bpy.app.version_string}", flush=True)
     os.makedirs(args.workdir, exist_ok=True)
     install(args.zip, args.nullpath)
     scene, hole = build_scene()
@@ -267,6 +291,7 @@ def main():
     check_axes(scene, hole, args.workdir)
     check_animation(scene, image, args.workdir)
     check_panorama(scene, hole, args.workdir)
+    check_extension(args.zip)
 
 
 if __name__ == "__main__":
