@@ -14,7 +14,8 @@ python -m pip install -q --upgrade pip
 python -m pip install -q -r python/requirements-ci.txt
 cargo build --release --bin nullpath
 python -m pip install -q --no-build-isolation ./python
-python -m pytest -q python/tests
+# A test that hangs prints every thread's stack after two minutes, so a CI log says where.
+python -m pytest -q -ra -o faulthandler_timeout=120 --durations=5 python/tests
 jupyter nbconvert --to notebook --execute examples/notebook.ipynb --output-dir "$target/notebook" \
   --ExecutePreprocessor.timeout=600
 ls examples/plots/*.png
