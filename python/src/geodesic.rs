@@ -94,9 +94,14 @@ fn region_of(py: Python<'_>, region: &str) -> PyResult<Region> {
 /// Rows of three from an array of shape (3,) or (N, 3), named `name` in errors.
 fn rows(py: Python<'_>, name: &str, array: &PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<Vec<[f64; 3]>> {
     let view = array.as_array();
+    // A C-ordered (N, 3) array is read as one slice (the common case, and the one bulk calls
+    // take, where walking rows of a dynamic-dimension view costs more than tracing flat rays).
     let shaped = match view.shape() {
         [3] => Some(vec![[view[[0]], view[[1]], view[[2]]]]),
-        [_, 3] => Some(view.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect()),
+        [_, 3] => Some(match view.as_slice() {
+            Some(flat) => flat.chunks_exact(3).map(|r| [r[0], r[1], r[2]]).collect(),
+            None => view.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect(),
+        }),
         _ => None,
     };
     let Some(rows) = shaped else {
@@ -300,9 +305,7 @@ pub fn geodesics<'py>(
     })?;
     let out = PyDict::new(py);
     out.set_item("fate", Array1::from(fates).into_pyarray(py))?;
-    let ends = Array2::from_shape_vec((n, 3), ends.into_iter().flatten().collect())
-        .map_err(|e| error(py, None, e.to_string()))?;
-    out.set_item("direction", ends.into_pyarray(py))?;
+    out.set_item("direction", Array2::from(ends).into_pyarray(py))?;
     out.set_item("steps", Array1::from(steps).into_pyarray(py))?;
     Ok(out)
 }
