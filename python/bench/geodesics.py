@@ -22,8 +22,8 @@ import subprocess
 import time
 
 # NumPy's OpenBLAS keeps worker threads spinning for a while after each call (here: the norms of
-# the fan's directions). On a machine with few cores they take a core from the traced rays (6.5 %
-# of a one-thread profile on two cores), so they are held to one unless the user says otherwise.
+# the fan's directions). On a machine with few cores they take cycles from the traced rays, so
+# they are held to one unless the user says otherwise.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402 (after the BLAS setting, which numpy reads at import)
